@@ -1,0 +1,21 @@
+# Finds the libraries voxremesh builds on, all from Debian's packages (tools/install_dependencies.sh).
+find_package(Threads REQUIRED)
+find_package(TBB REQUIRED)
+
+# Debian ships FindOpenVDB.cmake outside CMake's default module path; it needs boost-iostreams.
+list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB /usr/lib/cmake/OpenVDB)
+find_package(OpenVDB REQUIRED)
+
+find_package(OpenMesh REQUIRED)
+if(NOT TARGET OpenMeshCore)
+  message(FATAL_ERROR "OpenMesh was found but defines no OpenMeshCore target")
+endif()
+
+if(VOXREMESH_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()
+
+find_program(CCACHE_PROGRAM ccache)
+if(CCACHE_PROGRAM)
+  set(CMAKE_CXX_COMPILER_LAUNCHER ${CCACHE_PROGRAM})
+endif()

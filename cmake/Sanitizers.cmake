@@ -1,0 +1,6 @@
+# -DVOXREMESH_SANITIZE=ON builds everything with AddressSanitizer and UBSan.
+option(VOXREMESH_SANITIZE "Build with address and undefined-behaviour sanitizers" OFF)
+if(VOXREMESH_SANITIZE)
+  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer)
+  add_link_options(-fsanitize=address,undefined)
+endif()

@@ -1,0 +1,73 @@
+#include "support/test_support.h"
+
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <sys/wait.h>
+
+namespace voxremesh::test {
+
+std::filesystem::path sharedDataDir() {
+  return std::filesystem::path(VOXREMESH_SOURCE_DIR).parent_path() / "shared" / "data";
+}
+
+std::filesystem::path sharedDeck(const std::string& name) { return sharedDataDir() / name; }
+
+namespace {
+
+struct ScratchRoot {
+  std::filesystem::path path;
+  ScratchRoot() {
+    path = std::filesystem::temp_directory_path() /
+           ("voxremesh-test-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(path);
+  }
+  ~ScratchRoot() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path, ignored);
+  }
+};
+
+}  // namespace
+
+std::filesystem::path scratchDir(const std::string& name) {
+  static ScratchRoot root;
+  const std::filesystem::path dir = root.path / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+void writeText(const std::filesystem::path& path, const std::string& text) {
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
+std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path.string());
+  std::ostringstream content;
+  content << in.rdbuf();
+  return content.str();
+}
+
+CliResult runCli(const std::string& args) {
+  const std::string command = std::string(VOXREMESH_CLI) + " " + args + " 2>&1";
+  CliResult result;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) throw std::runtime_error("cannot run " + command);
+  std::array<char, 4096> buffer{};
+  std::size_t n = 0;
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
+  const int status = ::pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+}  // namespace voxremesh::test

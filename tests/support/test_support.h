@@ -1,0 +1,41 @@
+// Helpers shared by the test suites: where the real decks are, scratch folders, running the CLI.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace voxremesh::test {
+
+/// ../shared/data relative to the project root (may not exist in a user's clone).
+std::filesystem::path sharedDataDir();
+
+/// The path of a deck in ../shared/data; the calling test is skipped (GTEST_SKIP) by the macro
+/// below when it is missing.
+std::filesystem::path sharedDeck(const std::string& name);
+
+/// A fresh, empty folder for one test, removed when the process exits.
+std::filesystem::path scratchDir(const std::string& name);
+
+/// Writes text to a file (creating folders); throws std::runtime_error on failure.
+void writeText(const std::filesystem::path& path, const std::string& text);
+
+/// Reads a whole file; throws std::runtime_error on failure.
+std::string readText(const std::filesystem::path& path);
+
+/// Result of running the voxremesh CLI as a subprocess.
+struct CliResult {
+  int exitCode = -1;
+  std::string output;  ///< stdout and stderr together
+};
+
+/// Runs `voxremesh ARGS` (arguments are passed to /bin/sh as written) and captures its output.
+CliResult runCli(const std::string& args);
+
+}  // namespace voxremesh::test
+
+/// Skips the current test with a clear message when ../shared/data/NAME is missing.
+#define VOXREMESH_REQUIRE_SHARED_DECK(var, name)                                     \
+  const std::filesystem::path var = ::voxremesh::test::sharedDeck(name);             \
+  if (!std::filesystem::exists(var))                                                 \
+  GTEST_SKIP() << "real deck " << var << " not found (../shared/data is not beside " \
+                  "the project); skipping"
