@@ -12,8 +12,7 @@ namespace voxremesh {
 class InputError : public std::runtime_error {
  public:
   /// Builds "file:line: message" and, when card is not empty, "\n  card: <card>".
-  InputError(std::string file, std::size_t line, const std::string& message,
-             std::string card = {});
+  InputError(std::string file, std::size_t line, const std::string& message, std::string card = {});
 
   const std::string& file() const noexcept { return file_; }
   std::size_t line() const noexcept { return line_; }

@@ -41,9 +41,9 @@ struct NodeExtras {
 /// the section/property".
 struct ShellExtras {
   std::array<double, 4> thickness{};
-  double angle = 0.0;         ///< material angle in degrees, or a coordinate system ID if angleIsMcid
-  bool angleIsMcid = false;   ///< angle holds a material coordinate system ID
-  double offset = 0.0;        ///< reference surface offset
+  double angle = 0.0;  ///< material angle in degrees, or a coordinate system ID if angleIsMcid
+  bool angleIsMcid = false;  ///< angle holds a material coordinate system ID
+  double offset = 0.0;       ///< reference surface offset
 };
 
 /// A shell element: a triangle (nodeCount 3) or a quadrilateral (nodeCount 4).

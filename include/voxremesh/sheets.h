@@ -31,8 +31,8 @@ struct Sheet {
   std::vector<Id> pointNodeIds;               ///< the model node ID of each point
   /// Corners in a consistent orientation; a triangle has faces[f][3] == kNoPoint.
   std::vector<std::array<PointIndex, 4>> faces;
-  std::vector<Id> faceShellIds;       ///< the model shell ID of each face
-  std::vector<bool> faceFlipped;      ///< the face's corner order is reversed from the model's
+  std::vector<Id> faceShellIds;         ///< the model shell ID of each face
+  std::vector<bool> faceFlipped;        ///< the face's corner order is reversed from the model's
   std::vector<Polyline> boundaryLoops;  ///< closed, following the boundary
   std::vector<Polyline> featureLines;   ///< chains of edges whose dihedral angle exceeds the limit
   std::vector<PointIndex> featurePoints;  ///< corners of feature lines and of boundary loops

@@ -19,11 +19,11 @@ struct FormatName {
 
 // Extensions and the names a user may give with --format; the first of each format is canonical.
 constexpr FormatName kFormatNames[] = {
-    {"k", DeckFormat::LsDyna},    {"key", DeckFormat::LsDyna},   {"dyn", DeckFormat::LsDyna},
-    {"lsdyna", DeckFormat::LsDyna}, {"bdf", DeckFormat::Nastran}, {"nas", DeckFormat::Nastran},
-    {"dat", DeckFormat::Nastran}, {"nastran", DeckFormat::Nastran}, {"inp", DeckFormat::Abaqus},
-    {"abaqus", DeckFormat::Abaqus}, {"obj", DeckFormat::Obj},     {"off", DeckFormat::Off},
-    {"stl", DeckFormat::Stl},     {"ply", DeckFormat::Ply},      {"vtu", DeckFormat::Vtu},
+    {"k", DeckFormat::LsDyna},      {"key", DeckFormat::LsDyna},      {"dyn", DeckFormat::LsDyna},
+    {"lsdyna", DeckFormat::LsDyna}, {"bdf", DeckFormat::Nastran},     {"nas", DeckFormat::Nastran},
+    {"dat", DeckFormat::Nastran},   {"nastran", DeckFormat::Nastran}, {"inp", DeckFormat::Abaqus},
+    {"abaqus", DeckFormat::Abaqus}, {"obj", DeckFormat::Obj},         {"off", DeckFormat::Off},
+    {"stl", DeckFormat::Stl},       {"ply", DeckFormat::Ply},         {"vtu", DeckFormat::Vtu},
 };
 
 std::string acceptedNames() {
@@ -46,7 +46,8 @@ DeckFormat formatFromPath(const std::filesystem::path& path) {
   for (const auto& entry : kFormatNames)
     if (io::iequals(extension, entry.name) && extension.size() <= 3) return entry.format;
   throw SettingError("cannot tell the format of '" + path.string() + "' from its extension '" +
-                     extension + "' (known: .k .key .dyn .bdf .nas .dat .inp .obj .off .stl .ply "
+                     extension +
+                     "' (known: .k .key .dyn .bdf .nas .dat .inp .obj .off .stl .ply "
                      ".vtu; give the format explicitly)");
 }
 
@@ -59,43 +60,68 @@ FeModel readDeck(const std::filesystem::path& path, const ReadOptions& options,
   Warnings local;
   Warnings& sink = warnings ? *warnings : local;
   switch (format) {
-    case DeckFormat::LsDyna: return io::readLsDyna(path, sink);
-    case DeckFormat::Nastran: return io::readNastran(path, sink);
-    case DeckFormat::Abaqus: return io::readAbaqus(path, sink);
-    case DeckFormat::Obj: return io::readObj(path, sink);
-    case DeckFormat::Off: return io::readOff(path, sink);
-    case DeckFormat::Stl: return io::readStl(path, sink);
-    case DeckFormat::Ply: return io::readPly(path, sink);
-    case DeckFormat::Vtu: break;
+    case DeckFormat::LsDyna:
+      return io::readLsDyna(path, sink);
+    case DeckFormat::Nastran:
+      return io::readNastran(path, sink);
+    case DeckFormat::Abaqus:
+      return io::readAbaqus(path, sink);
+    case DeckFormat::Obj:
+      return io::readObj(path, sink);
+    case DeckFormat::Off:
+      return io::readOff(path, sink);
+    case DeckFormat::Stl:
+      return io::readStl(path, sink);
+    case DeckFormat::Ply:
+      return io::readPly(path, sink);
+    case DeckFormat::Vtu:
+      break;
   }
   throw SettingError("reading " + std::string(formatName(format)) +
                      " files is not supported (it is an output format)");
 }
 
-void writeDeck(const FeModel& model, const std::filesystem::path& path,
-               const WriteOptions& options, Warnings* warnings) {
+void writeDeck(const FeModel& model, const std::filesystem::path& path, const WriteOptions& options,
+               Warnings* warnings) {
   const DeckFormat format = options.format ? *options.format : formatFromPath(path);
   Warnings local;
   Warnings& sink = warnings ? *warnings : local;
   if (format != model.sourceFormat) {
-    const auto foreign = std::count_if(model.blocks.begin(), model.blocks.end(), [](const DeckBlock& b) {
-      return b.kind == DeckBlock::Kind::Verbatim && !b.text.empty();
-    });
+    const auto foreign = std::count_if(
+        model.blocks.begin(), model.blocks.end(),
+        [](const DeckBlock& b) { return b.kind == DeckBlock::Kind::Verbatim && !b.text.empty(); });
     if (foreign > 0)
-      sink.push_back(std::to_string(foreign) + " block(s) of " + formatName(model.sourceFormat) +
-                     " content (keywords other than nodes, shells and parts) cannot be written to " +
-                     formatName(format) + " and are left out of " + path.string());
+      sink.push_back(
+          std::to_string(foreign) + " block(s) of " + formatName(model.sourceFormat) +
+          " content (keywords other than nodes, shells and parts) cannot be written to " +
+          formatName(format) + " and are left out of " + path.string());
   }
   std::string out;
   switch (format) {
-    case DeckFormat::LsDyna: io::writeLsDyna(model, out, sink); break;
-    case DeckFormat::Nastran: io::writeNastran(model, out, sink); break;
-    case DeckFormat::Abaqus: io::writeAbaqus(model, out, sink); break;
-    case DeckFormat::Obj: io::writeObj(model, out, sink); break;
-    case DeckFormat::Off: io::writeOff(model, out, sink); break;
-    case DeckFormat::Stl: io::writeStl(model, out, options.binary, sink); break;
-    case DeckFormat::Ply: io::writePly(model, out, options.binary, sink); break;
-    case DeckFormat::Vtu: io::writeVtuContent(model, out, {}, {}); break;
+    case DeckFormat::LsDyna:
+      io::writeLsDyna(model, out, sink);
+      break;
+    case DeckFormat::Nastran:
+      io::writeNastran(model, out, sink);
+      break;
+    case DeckFormat::Abaqus:
+      io::writeAbaqus(model, out, sink);
+      break;
+    case DeckFormat::Obj:
+      io::writeObj(model, out, sink);
+      break;
+    case DeckFormat::Off:
+      io::writeOff(model, out, sink);
+      break;
+    case DeckFormat::Stl:
+      io::writeStl(model, out, options.binary, sink);
+      break;
+    case DeckFormat::Ply:
+      io::writePly(model, out, options.binary, sink);
+      break;
+    case DeckFormat::Vtu:
+      io::writeVtuContent(model, out, {}, {});
+      break;
   }
   io::writeFileAtomically(path, out);
 }

@@ -50,7 +50,9 @@ bool LineCursor::next() {
   return true;
 }
 
-void LineCursor::pushBack() { pushedBack_ = true; }
+void LineCursor::pushBack() {
+  pushedBack_ = true;
+}
 
 std::string_view trim(std::string_view s) {
   std::size_t b = 0;

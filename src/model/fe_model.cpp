@@ -15,12 +15,14 @@ std::unordered_map<Id, std::size_t> FeModel::nodeIndex() const {
 }
 
 const Part* FeModel::findPart(Id id) const {
-  const auto it = std::find_if(parts.begin(), parts.end(), [id](const Part& p) { return p.id == id; });
+  const auto it =
+      std::find_if(parts.begin(), parts.end(), [id](const Part& p) { return p.id == id; });
   return it == parts.end() ? nullptr : &*it;
 }
 
 Part& FeModel::partOrAdd(Id id, const std::string& name) {
-  const auto it = std::find_if(parts.begin(), parts.end(), [id](const Part& p) { return p.id == id; });
+  const auto it =
+      std::find_if(parts.begin(), parts.end(), [id](const Part& p) { return p.id == id; });
   if (it != parts.end()) return *it;
   parts.push_back(Part{id, name, false});
   return parts.back();
@@ -36,14 +38,22 @@ std::uint8_t FeModel::internShellType(const std::string& name) {
 
 const char* formatName(DeckFormat format) {
   switch (format) {
-    case DeckFormat::LsDyna: return "LS-DYNA keyword";
-    case DeckFormat::Nastran: return "Nastran bulk data";
-    case DeckFormat::Abaqus: return "Abaqus input";
-    case DeckFormat::Obj: return "Wavefront OBJ";
-    case DeckFormat::Off: return "OFF";
-    case DeckFormat::Stl: return "STL";
-    case DeckFormat::Ply: return "PLY";
-    case DeckFormat::Vtu: return "VTK XML unstructured grid";
+    case DeckFormat::LsDyna:
+      return "LS-DYNA keyword";
+    case DeckFormat::Nastran:
+      return "Nastran bulk data";
+    case DeckFormat::Abaqus:
+      return "Abaqus input";
+    case DeckFormat::Obj:
+      return "Wavefront OBJ";
+    case DeckFormat::Off:
+      return "OFF";
+    case DeckFormat::Stl:
+      return "STL";
+    case DeckFormat::Ply:
+      return "PLY";
+    case DeckFormat::Vtu:
+      return "VTK XML unstructured grid";
   }
   return "unknown";
 }

@@ -2,12 +2,12 @@
 
 #include <unistd.h>
 
+#include <sys/wait.h>
 #include <array>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
-#include <sys/wait.h>
 
 namespace voxremesh::test {
 
@@ -15,15 +15,17 @@ std::filesystem::path sharedDataDir() {
   return std::filesystem::path(VOXREMESH_SOURCE_DIR).parent_path() / "shared" / "data";
 }
 
-std::filesystem::path sharedDeck(const std::string& name) { return sharedDataDir() / name; }
+std::filesystem::path sharedDeck(const std::string& name) {
+  return sharedDataDir() / name;
+}
 
 namespace {
 
 struct ScratchRoot {
   std::filesystem::path path;
   ScratchRoot() {
-    path = std::filesystem::temp_directory_path() /
-           ("voxremesh-test-" + std::to_string(::getpid()));
+    path =
+        std::filesystem::temp_directory_path() / ("voxremesh-test-" + std::to_string(::getpid()));
     std::filesystem::create_directories(path);
   }
   ~ScratchRoot() {
@@ -64,7 +66,8 @@ CliResult runCli(const std::string& args) {
   if (!pipe) throw std::runtime_error("cannot run " + command);
   std::array<char, 4096> buffer{};
   std::size_t n = 0;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) result.output.append(buffer.data(), n);
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    result.output.append(buffer.data(), n);
   const int status = ::pclose(pipe);
   result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;

@@ -34,8 +34,9 @@ CliResult runCli(const std::string& args);
 }  // namespace voxremesh::test
 
 /// Skips the current test with a clear message when ../shared/data/NAME is missing.
-#define VOXREMESH_REQUIRE_SHARED_DECK(var, name)                                     \
-  const std::filesystem::path var = ::voxremesh::test::sharedDeck(name);             \
-  if (!std::filesystem::exists(var))                                                 \
-  GTEST_SKIP() << "real deck " << var << " not found (../shared/data is not beside " \
+#define VOXREMESH_REQUIRE_SHARED_DECK(var, name)                         \
+  const std::filesystem::path var = ::voxremesh::test::sharedDeck(name); \
+  if (!std::filesystem::exists(var))                                     \
+  GTEST_SKIP() << "real deck " << var                                    \
+               << " not found (../shared/data is not beside "            \
                   "the project); skipping"
