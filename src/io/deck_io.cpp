@@ -1,5 +1,7 @@
 // Format dispatch for readDeck / writeDeck / writeVtu.
 #include <algorithm>
+#include <stdexcept>
+#include <unordered_map>
 #include <utility>
 
 #include "io/atomic_file.h"
@@ -30,6 +32,24 @@ std::string acceptedNames() {
   std::string list;
   for (const auto& entry : kFormatNames) list += std::string(list.empty() ? "" : ", ") + entry.name;
   return list;
+}
+
+/// Throws std::invalid_argument when a shell names a node the model does not have, or a node ID
+/// is used twice: every writer relies on both.
+void requireConsistentModel(const FeModel& model) {
+  const std::unordered_map<Id, std::size_t> index = [&] {
+    try {
+      return model.nodeIndex();
+    } catch (const std::runtime_error& e) {
+      throw std::invalid_argument(std::string("cannot write the model: ") + e.what());
+    }
+  }();
+  for (const Shell& shell : model.shells)
+    for (int k = 0; k < shell.nodeCount; ++k)
+      if (!index.count(shell.nodes[k]))
+        throw std::invalid_argument("cannot write the model: element " + std::to_string(shell.id) +
+                                    " names node " + std::to_string(shell.nodes[k]) +
+                                    ", which the model does not have");
 }
 
 }  // namespace
@@ -84,6 +104,7 @@ FeModel readDeck(const std::filesystem::path& path, const ReadOptions& options,
 void writeDeck(const FeModel& model, const std::filesystem::path& path, const WriteOptions& options,
                Warnings* warnings) {
   const DeckFormat format = options.format ? *options.format : formatFromPath(path);
+  requireConsistentModel(model);
   Warnings local;
   Warnings& sink = warnings ? *warnings : local;
   if (format != model.sourceFormat) {
@@ -128,6 +149,7 @@ void writeDeck(const FeModel& model, const std::filesystem::path& path, const Wr
 
 void writeVtu(const FeModel& model, const std::filesystem::path& path,
               const std::vector<FieldData>& cellData, const std::vector<FieldData>& pointData) {
+  requireConsistentModel(model);
   std::string out;
   io::writeVtuContent(model, out, cellData, pointData);
   io::writeFileAtomically(path, out);
