@@ -70,6 +70,20 @@ TEST(AppendRealFixedWidth, FitsTheFieldAndKeepsTheMostDigits) {
   }
 }
 
+TEST(AppendRealFixedWidth, ExtremesAndNarrowFieldsFit) {
+  for (double value : {0.0, -0.0, 1e-300, -1e-300, 1e300, -1.2e300, 4.9e-324, 123456789012345.0,
+                       -99999999.5, 0.009999999999999, 1.0 / 3.0}) {
+    for (int width : {8, 10, 16, 20}) {
+      std::string out;
+      appendRealFixedWidth(out, value, width);
+      ASSERT_EQ(out.size(), static_cast<std::size_t>(width)) << value << " -> '" << out << "'";
+      double back = 0;
+      ASSERT_TRUE(parseReal(out, back)) << out;
+      EXPECT_LE(std::fabs(back - value), std::fabs(value) * 1e-2) << out;
+    }
+  }
+}
+
 TEST(LineCursor, NumbersLinesAndKeepsRawTerminators) {
   LineCursor cursor("a\r\nb\n\nc");
   ASSERT_TRUE(cursor.next());

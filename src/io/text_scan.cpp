@@ -164,47 +164,44 @@ void appendRightAligned(std::string& out, const char* text, std::size_t length, 
 
 void appendRealFixedWidth(std::string& out, double value, int width) {
   // The shortest exact form first: it reads back bit for bit.
-  char shortest[64];
-  const auto exact = std::to_chars(shortest, shortest + sizeof shortest, value);
-  const std::size_t exactLength = static_cast<std::size_t>(exact.ptr - shortest);
-  if (static_cast<int>(exactLength) <= width && exactLength > 0) {
-    appendRightAligned(out, shortest, exactLength, width);
+  char text[64];
+  const auto exact = std::to_chars(text, text + sizeof text, value);
+  const std::size_t exactLength = static_cast<std::size_t>(exact.ptr - text);
+  if (static_cast<int>(exactLength) <= width) {
+    appendRightAligned(out, text, exactLength, width);
     return;
   }
-  // Otherwise the fixed or scientific form with the most digits that fits.
-  char best[64];
-  std::size_t bestLength = 0;
-  double bestError = INFINITY;
-  char candidate[64];
-  for (int precision = width; precision >= 0; --precision) {
-    const std::size_t length =
-        formatReal(candidate, sizeof candidate, value, std::chars_format::fixed, precision);
-    if (length > 0 && static_cast<int>(length) <= width) {
-      double back = 0;
-      std::from_chars(candidate, candidate + length, back);
-      bestError = std::fabs(back - value);
-      std::memcpy(best, candidate, length);
-      bestLength = length;
-      break;
-    }
-  }
-  for (int precision = width; precision >= 0; --precision) {
-    const std::size_t length =
-        formatReal(candidate, sizeof candidate, value, std::chars_format::scientific, precision);
-    if (length > 0 && static_cast<int>(length) <= width) {
-      double back = 0;
-      std::from_chars(candidate, candidate + length, back);
-      if (std::fabs(back - value) < bestError) {
-        std::memcpy(best, candidate, length);
-        bestLength = length;
+  // Otherwise as many digits as fit. Fixed notation keeps more significant digits than
+  // scientific from 0.01 up to the magnitude where no decimal digit would be left; the precision
+  // is computed, not searched (one retry when rounding carries into a new digit).
+  const int sign = value < 0 ? 1 : 0;
+  const double magnitude = std::fabs(value);
+  if (std::isfinite(value) && magnitude >= 1e-2 && magnitude < std::pow(10.0, width - sign - 3)) {
+    int intDigits = magnitude < 1 ? 1 : static_cast<int>(std::floor(std::log10(magnitude))) + 1;
+    for (int attempt = 0; attempt < 2; ++attempt, ++intDigits) {
+      const int precision = width - sign - intDigits - 1;
+      const std::size_t length =
+          formatReal(text, sizeof text, value, std::chars_format::fixed, precision);
+      if (length > 0 && static_cast<int>(length) <= width) {
+        appendRightAligned(out, text, length, width);
+        return;
       }
-      break;
     }
   }
-  if (bestLength == 0)
-    throw std::range_error("value " + std::to_string(value) + " does not fit in " +
-                           std::to_string(width) + " characters");
-  appendRightAligned(out, best, bestLength, width);
+  const int exponent = magnitude == 0 ? 0 : static_cast<int>(std::floor(std::log10(magnitude)));
+  int exponentLength = std::abs(exponent) >= 100 ? 5 : 4;  // "e-05", "e+100"
+  for (int attempt = 0; attempt < 2; ++attempt, ++exponentLength) {
+    const int precision = width - sign - 2 - exponentLength;
+    if (precision < 0) break;
+    const std::size_t length =
+        formatReal(text, sizeof text, value, std::chars_format::scientific, precision);
+    if (length > 0 && static_cast<int>(length) <= width) {
+      appendRightAligned(out, text, length, width);
+      return;
+    }
+  }
+  throw std::range_error("value " + std::to_string(value) + " does not fit in " +
+                         std::to_string(width) + " characters");
 }
 
 void appendIntRight(std::string& out, std::int64_t value, int width) {
