@@ -122,10 +122,33 @@ const DeckBlock* findBlock(const FeModel& model, const std::string& keywordLine)
   return nullptr;
 }
 
+/// The source text without its *NODE and *ELEMENT_SHELL blocks (a block runs from its keyword
+/// line to the next one).
+std::string nonGeometryText(const std::string& source) {
+  std::string result;
+  bool geometry = false;
+  std::size_t begin = 0;
+  while (begin < source.size()) {
+    std::size_t end = source.find('\n', begin);
+    end = end == std::string::npos ? source.size() : end + 1;
+    const std::string line = source.substr(begin, end - begin);
+    if (line[0] == '*') {
+      const std::string keyword = line.substr(0, line.find_first_of(" \r\n"));
+      geometry = keyword == "*NODE" || keyword.rfind("*ELEMENT_SHELL", 0) == 0;
+    }
+    if (!geometry) result += line;
+    begin = end;
+  }
+  return result;
+}
+
 /// Reads a real deck, writes it, reads it again: same model, every verbatim block in order, and
 /// writing the re-read model gives the same text.
 void expectRealRoundTrip(const std::string& test, const fs::path& deck) {
   const FeModel first = read(deck);
+  std::string verbatim;
+  for (const DeckBlock& block : first.blocks) verbatim += block.text;
+  EXPECT_EQ(verbatim, nonGeometryText(test::readText(deck)));  // nothing but geometry left out
   std::string written;
   const FeModel second = roundTrip(test, first, &written);
   expectSameModel(first, second);
@@ -639,6 +662,32 @@ TEST(LsDynaWrite, FreshDeckFromAnotherFormat) {
   ASSERT_EQ(back.parts.size(), 2u);
   EXPECT_EQ(back.parts[0].name, "skin");
   EXPECT_TRUE(back.parts[0].definedInBlocks);
+}
+
+TEST(LsDynaWrite, GeometryWithoutItsBlocksFollowsKeyword) {
+  FeModel model;
+  model.blocks.push_back({DeckBlock::Kind::Verbatim, "$ header\n*KEYWORD LONG=Y\n"});
+  model.blocks.push_back({DeckBlock::Kind::Verbatim, "*CONTROL_TERMINATION\n       1.0\n"});
+  model.blocks.push_back({DeckBlock::Kind::Verbatim, "*END"});  // no final newline
+  model.nodes = {{1, {0, 0, 0}}, {2, {1, 0, 0}}, {3, {1, 1, 0}}};
+  model.shells.push_back(Shell{1, 4, {1, 2, 3, 0}, 3, 0, -1});
+  model.parts.push_back(Part{4, "new part", false});
+  std::string written;
+  const FeModel back = roundTrip("no_blocks", model, &written);
+  expectSameModel(model, back);
+  const std::size_t keyword = written.find("*KEYWORD LONG=Y\n");
+  const std::size_t nodes = written.find("*NODE\n");  // the deck is long: no suffix needed
+  const std::size_t shells = written.find("*ELEMENT_SHELL\n");
+  const std::size_t control = written.find("*CONTROL_TERMINATION\n");
+  const std::size_t part = written.find("*PART\n");
+  EXPECT_LT(keyword, nodes);
+  EXPECT_LT(nodes, shells);
+  EXPECT_LT(shells, control);
+  EXPECT_LT(control, part);
+  EXPECT_LT(part, written.find("*END"));
+  EXPECT_NE(written.find("\nnew part\n"), std::string::npos);
+  EXPECT_NE(written.find(std::string(19, ' ') + "1" + std::string(19, ' ') + "4"),
+            std::string::npos);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -32,17 +32,21 @@ CardFormat neededFormat(int widest, int standardWidth) {
   return CardFormat::Long;
 }
 
-/// The first line of a text, without its terminator.
-std::string_view firstLine(std::string_view text) {
-  std::string_view line = text.substr(0, text.find('\n'));
-  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-  return line;
-}
-
-/// The keyword a verbatim block starts with ("" for text before the first keyword).
-std::string blockKeyword(const DeckBlock& block) {
-  const std::string_view line = firstLine(block.text);
-  return lsdyna::isKeywordLine(line) ? lsdyna::parseKeywordLine(line).name : std::string();
+/// The keyword line a verbatim block starts with, after any comment and blank lines ("" for text
+/// without a keyword).
+std::string_view keywordLineOf(const DeckBlock& block) {
+  const std::string_view text = block.text;
+  std::size_t begin = 0;
+  while (begin < text.size()) {
+    std::size_t end = text.find('\n', begin);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(begin, end - begin);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (lsdyna::isKeywordLine(line)) return line;
+    if (!lsdyna::isCommentLine(line) && !trim(line).empty()) break;
+    begin = end + 1;
+  }
+  return {};
 }
 
 /// The options an element needs for its extras.
@@ -114,11 +118,12 @@ class DeckWriter {
       hasShells = hasShells || blocks[i].kind == DeckBlock::Kind::Shells;
       if (blocks[i].kind != DeckBlock::Kind::Verbatim) continue;
       if (blocks[i].text.find("\r\n") != std::string::npos) eol_ = "\r\n";
-      const std::string keyword = blockKeyword(blocks[i]);
+      const std::string_view line = keywordLineOf(blocks[i]);
+      const std::string keyword =
+          line.empty() ? std::string() : lsdyna::parseKeywordLine(line).name;
       if (keyword == "*KEYWORD" && keywordAt == kNone) {
         keywordAt = i;
-        if (auto format = lsdyna::keywordLineFormat(firstLine(blocks[i].text)))
-          deckFormat_ = *format;
+        if (auto format = lsdyna::keywordLineFormat(line)) deckFormat_ = *format;
       }
       if (keyword == "*END" && endAt == kNone) endAt = i;
     }
