@@ -400,7 +400,8 @@ TEST(NastranRead, IncludeInSubfolder) {
   const std::string mat1 = small({"MAT1", "1", "70000.", "", ".33"});
   put(dir / "mesh" / "more" / "last.bdf",
       small({"GRID", "3", "", "1.", "1.", "0."}) + mat1.substr(0, mat1.size() - 1));
-  put(dir / "elements.bdf", small({"CTRIA3", "1", "1", "1", "2", "3"}));
+  // A repeated plain BEGIN BULK (some bulk files start with one) is kept and changes nothing.
+  put(dir / "elements.bdf", "BEGIN BULK\n" + small({"CTRIA3", "1", "1", "1", "2", "3"}));
   const fs::path main = put(dir / "main.bdf", kHeader + small({"PSHELL", "1", "1", "1."}) +
                                                   "INCLUDE 'mesh/\n"
                                                   "        nodes.bdf'\n"
@@ -412,7 +413,8 @@ TEST(NastranRead, IncludeInSubfolder) {
   EXPECT_EQ(node(model, 3).xyz, (std::array<double, 3>{1.0, 1.0, 0.0}));
   ASSERT_EQ(model.shells.size(), 1u);
   EXPECT_EQ(verbatim(model), kHeader + small({"PSHELL", "1", "1", "1."}) +
-                                 small({"MAT1", "1", "70000.", "", ".33"}) + "ENDDATA\n");
+                                 small({"MAT1", "1", "70000.", "", ".33"}) + "BEGIN BULK\n" +
+                                 "ENDDATA\n");
   ASSERT_EQ(warnings.size(), 3u);
   EXPECT_NE(warnings[0].find("main.bdf:8: INCLUDE 'mesh/nodes.bdf' was read in place"),
             std::string::npos)
@@ -670,6 +672,8 @@ TEST(NastranErrors, EachNamesFileAndLine) {
         grids + small({"CTRIA3", "1", "1", "1", "2", "3", "", "", "", "+A"}) +
             small({"+B", "", "", ".5", ".5", ".5"}),
         5, "continuation marker '+B' does not match '+A'");
+  check("super.bdf", grids + "BEGIN SUPER=2\n" + small({"GRID", "9", "", "0.", "0.", "0."}), 5,
+        "after BEGIN SUPER");
   check("empty.bdf", "  \n\n", 0, "empty file");
   check("binary.bdf", grids + std::string("GRID\0\0\x01", 7), 4, "binary data");
   const fs::path main = put(dir / "include.bdf", grids + "$\nINCLUDE 'sub/missing.bdf'\n");

@@ -353,9 +353,17 @@ class Reader {
         afterEnd_ = true;
         blocks_.newVerbatim(cursor.rawLine());
         return;
-      case CardKind::Begin:
-        partitioned_ = true;
+      case CardKind::Begin: {
+        // BEGIN SUPER=n, BEGIN BULK AUXMODEL=n, ...: bulk data of another part follows. A plain
+        // repeated BEGIN BULK (some include files start with one) changes nothing.
+        std::string_view rest = line;
+        const std::size_t dollar = rest.find('$');
+        if (dollar != std::string_view::npos) rest = rest.substr(0, dollar);
+        rest = trim(rest);
+        if (!(isBeginBulk(rest) && iequals(rest.substr(rest.size() - 4), "BULK")))
+          partitioned_ = true;
         break;
+      }
       case CardKind::Unsupported:
         throw InputError(file.name, cursor.lineNumber(),
                          std::string(name.name) +
