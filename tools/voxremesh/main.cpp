@@ -1,36 +1,98 @@
 // voxremesh command line: dispatches to one subcommand per file (cli_*.cpp).
 #include <cstdio>
+#include <cstring>
 #include <exception>
+#include <new>
 #include <string>
 #include <vector>
 
+#include "cli_common.h"
 #include "voxremesh/errors.h"
 
 namespace {
 
-void printUsage() {
+struct Command {
+  const char* name;
+  const char* summary;
+  voxremesh::cli::CommandFunction run;
+};
+
+// The subcommands; `voxremesh help NAME` runs NAME with --help.
+constexpr Command kCommands[] = {
+    {"info", "mesh report per part: counts, sizes, topology checks", voxremesh::cli::runInfo},
+    {"convert", "convert between deck and mesh formats", voxremesh::cli::runConvert},
+};
+
+const char* const kUsage = "voxremesh COMMAND [options]  (see voxremesh --help)";
+
+void printHelp() {
   std::printf(
       "voxremesh %s: remeshing of FE shell models through a volumetric representation\n\n"
-      "usage: voxremesh COMMAND [options]\n\n"
-      "commands:\n"
-      "  info DECK [--json]          mesh report per part: counts, sizes, topology checks\n"
-      "  convert IN OUT [--format F] convert between deck and mesh formats\n"
-      "  --version                   print the version\n",
+      "usage: voxremesh COMMAND [options]\n\ncommands:\n",
       VOXREMESH_VERSION);
+  for (const Command& command : kCommands)
+    std::printf("  %-10s %s\n", command.name, command.summary);
+  std::printf(
+      "\n"
+      "  voxremesh help COMMAND   the options of a command (also: voxremesh COMMAND --help)\n"
+      "  voxremesh --help         this text\n"
+      "  voxremesh --version      the version\n\n"
+      "exit codes: 0 success, 1 error (bad input, failed write), 2 malformed command line\n");
+}
+
+const Command* findCommand(const std::string& name) {
+  for (const Command& command : kCommands)
+    if (name == command.name) return &command;
+  return nullptr;
+}
+
+int usageError(const std::string& message, const std::string& usage) {
+  std::fprintf(stderr, "voxremesh: %s\nusage: %s\n", message.c_str(), usage.c_str());
+  return 2;
+}
+
+int failure(const char* what) {
+  std::fprintf(stderr, "voxremesh: error: %s\n", what);
+  return 1;
+}
+
+int dispatch(const std::vector<std::string>& args) {
+  if (args.empty()) return usageError("no command given", kUsage);
+  const std::string& name = args[0];
+  if (name == "-h" || name == "--help") {
+    printHelp();
+    return 0;
+  }
+  if (name == "--version") {
+    std::printf("voxremesh %s\n", VOXREMESH_VERSION);
+    return 0;
+  }
+  if (name == "help") {
+    if (args.size() == 1) {
+      printHelp();
+      return 0;
+    }
+    const Command* command = findCommand(args[1]);
+    if (!command || args.size() > 2)
+      return usageError(command ? "help takes one command" : "unknown command '" + args[1] + "'",
+                        "voxremesh help COMMAND");
+    return command->run({"--help"});
+  }
+  const Command* command = findCommand(name);
+  if (!command) return usageError("unknown command '" + name + "'", kUsage);
+  return command->run(std::vector<std::string>(args.begin() + 1, args.end()));
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.empty() || args[0] == "-h" || args[0] == "--help" || args[0] == "help") {
-    printUsage();
-    return args.empty() ? 2 : 0;
+  try {
+    return dispatch(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const voxremesh::cli::UsageError& error) {
+    return usageError(error.what(), error.usage());
+  } catch (const std::bad_alloc&) {
+    return failure("out of memory");
+  } catch (const std::exception& error) {
+    return failure(error.what());
   }
-  if (args[0] == "--version") {
-    std::printf("voxremesh %s\n", VOXREMESH_VERSION);
-    return 0;
-  }
-  std::fprintf(stderr, "voxremesh: unknown command '%s' (see voxremesh --help)\n", args[0].c_str());
-  return 2;
 }

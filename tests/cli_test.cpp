@@ -1,0 +1,347 @@
+// The voxremesh command line, run as a subprocess: help, version, usage errors, info and convert.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "io/text_scan.h"
+#include "support/test_support.h"
+
+namespace fs = std::filesystem;
+using voxremesh::test::readText;
+using voxremesh::test::runCli;
+using voxremesh::test::scratchDir;
+using voxremesh::test::writeText;
+
+namespace {
+
+// A run with stdout and stderr kept apart.
+struct CliRun {
+  int exitCode = -1;
+  std::string out;
+  std::string err;
+};
+
+CliRun run(const std::string& args) {
+  const fs::path dir = scratchDir("cli-run");
+  const fs::path out = dir / "stdout", err = dir / "stderr";
+  // runCli appends "2>&1"; after "; exit $?" it applies to the exit only.
+  const auto result = runCli(args + " >'" + out.string() + "' 2>'" + err.string() + "'; exit $?");
+  return {result.exitCode, readText(out), readText(err)};
+}
+
+std::string quoted(const fs::path& path) {
+  return "'" + path.string() + "'";
+}
+
+void appendField(std::string& line, const std::string& text, std::size_t width) {
+  line += std::string(width > text.size() ? width - text.size() : 0, ' ') + text;
+}
+
+// An LS-DYNA deck: part 1 a 4 x 3 grid of quads, part 2 two trias (n3 = n4) beside it.
+std::string sampleDeck() {
+  std::string deck = "*KEYWORD\n*PART\nplate\n         1         1         1\n";
+  deck += "*PART\ngusset\n         2         1         1\n*NODE\n";
+  auto node = [&](int id, double x, double y) {
+    std::string line;
+    appendField(line, std::to_string(id), 8);
+    for (const double value : {x, y, 0.0}) {
+      std::string number;
+      voxremesh::io::appendRealFixedWidth(number, value, 16);
+      line += number;
+    }
+    deck += line + "\n";
+  };
+  for (int j = 0; j <= 3; ++j)
+    for (int i = 0; i <= 4; ++i) node(j * 5 + i + 1, 10.0 * i, 10.0 * j);
+  node(21, 50.0, 0.0);
+  node(22, 50.0, 10.0);
+  deck += "*ELEMENT_SHELL\n";
+  auto shell = [&](int id, int part, std::vector<int> n) {
+    std::string line;
+    appendField(line, std::to_string(id), 8);
+    appendField(line, std::to_string(part), 8);
+    for (const int v : n) appendField(line, std::to_string(v), 8);
+    deck += line + "\n";
+  };
+  int id = 0;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const int a = j * 5 + i + 1;
+      shell(++id, 1, {a, a + 1, a + 6, a + 5});
+    }
+  shell(++id, 2, {5, 21, 22, 22});
+  shell(++id, 2, {5, 22, 10, 10});
+  deck += "*END\n";
+  return deck;
+}
+
+// The deck with the x coordinate of node 2 (line 10) replaced by a malformed number.
+std::string malformedDeck() {
+  std::string deck = sampleDeck();
+  std::size_t line = 0;
+  for (int n = 1; n < 10; ++n) line = deck.find('\n', line) + 1;
+  if (deck.compare(line, 8, "       2") != 0) throw std::logic_error("line 10 is not node 2");
+  deck.replace(line + 8, 16, "       1.2.3e+x4");
+  return deck;
+}
+
+// Value of "key": <number> in a JSON text (first occurrence after `from`).
+double jsonNumber(const std::string& json, const std::string& key, std::size_t from = 0) {
+  const std::size_t at = json.find("\"" + key + "\":", from);
+  if (at == std::string::npos) throw std::runtime_error("no key " + key);
+  return std::strtod(json.c_str() + at + key.size() + 3, nullptr);
+}
+
+// Checks that `text` is one complete, valid JSON value (strict grammar; no extensions).
+class JsonChecker {
+ public:
+  explicit JsonChecker(const std::string& text) : s_(text) {}
+  bool valid() {
+    try {
+      value();
+      space();
+      return i_ == s_.size();
+    } catch (const std::exception&) {
+      return false;
+    }
+  }
+
+ private:
+  void fail() { throw std::runtime_error("invalid JSON at " + std::to_string(i_)); }
+  char peek() { return i_ < s_.size() ? s_[i_] : '\0'; }
+  void expect(char c) {
+    if (peek() != c) fail();
+    ++i_;
+  }
+  void space() {
+    while (peek() == ' ' || peek() == '\n' || peek() == '\t' || peek() == '\r') ++i_;
+  }
+  void digits() {
+    if (!std::isdigit(static_cast<unsigned char>(peek()))) fail();
+    while (std::isdigit(static_cast<unsigned char>(peek()))) ++i_;
+  }
+  void value() {
+    space();
+    const char c = peek();
+    if (c == '{' || c == '[') {
+      const char close = c == '{' ? '}' : ']';
+      ++i_;
+      space();
+      if (peek() == close) return void(++i_);
+      for (;;) {
+        if (c == '{') {
+          space();
+          string();
+          space();
+          expect(':');
+        }
+        value();
+        space();
+        if (peek() == ',') {
+          ++i_;
+          continue;
+        }
+        expect(close);
+        return;
+      }
+    }
+    if (c == '"') return string();
+    for (const char* word : {"true", "false", "null"})
+      if (s_.compare(i_, std::string(word).size(), word) == 0)
+        return void(i_ += std::string(word).size());
+    if (peek() == '-') ++i_;
+    if (peek() == '0')
+      ++i_;
+    else
+      digits();
+    if (peek() == '.') ++i_, digits();
+    if (peek() == 'e' || peek() == 'E') {
+      ++i_;
+      if (peek() == '+' || peek() == '-') ++i_;
+      digits();
+    }
+  }
+  void string() {
+    expect('"');
+    while (peek() != '"') {
+      const unsigned char c = static_cast<unsigned char>(peek());
+      if (c == '\0' || c < 0x20) fail();
+      ++i_;
+      if (c == '\\') {
+        const char e = peek();
+        ++i_;
+        if (e == 'u') {
+          for (int k = 0; k < 4; ++k) {
+            if (!std::isxdigit(static_cast<unsigned char>(peek()))) fail();
+            ++i_;
+          }
+        } else if (std::string("\"\\/bfnrt").find(e) == std::string::npos) {
+          fail();
+        }
+      }
+    }
+    ++i_;
+  }
+
+  const std::string& s_;
+  std::size_t i_ = 0;
+};
+
+}  // namespace
+
+TEST(Cli, HelpListsTheCommands) {
+  const CliRun r = run("--help");
+  EXPECT_EQ(r.exitCode, 0);
+  EXPECT_NE(r.out.find("usage: voxremesh COMMAND"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("info"), std::string::npos);
+  EXPECT_NE(r.out.find("convert"), std::string::npos);
+  EXPECT_TRUE(r.err.empty());
+  const CliRun info = run("help info");
+  EXPECT_EQ(info.exitCode, 0);
+  EXPECT_NE(info.out.find("usage: voxremesh info DECK"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("--tolerance"), std::string::npos);
+  const CliRun convert = run("convert --help");
+  EXPECT_EQ(convert.exitCode, 0);
+  EXPECT_NE(convert.out.find("--ascii"), std::string::npos) << convert.out;
+  EXPECT_EQ(run("help nonsense").exitCode, 2);
+}
+
+TEST(Cli, VersionPrintsTheProjectVersion) {
+  const CliRun r = run("--version");
+  EXPECT_EQ(r.exitCode, 0);
+  EXPECT_EQ(r.out, std::string("voxremesh ") + VOXREMESH_VERSION + "\n");
+}
+
+TEST(Cli, UsageErrorsExitWithTwo) {
+  const CliRun unknown = run("frobnicate");
+  EXPECT_EQ(unknown.exitCode, 2);
+  EXPECT_NE(unknown.err.find("unknown command 'frobnicate'"), std::string::npos) << unknown.err;
+  EXPECT_NE(unknown.err.find("usage:"), std::string::npos);
+  EXPECT_TRUE(unknown.out.empty());
+  EXPECT_EQ(run("").exitCode, 2);
+  const CliRun option = run("info deck.k --bogus");
+  EXPECT_EQ(option.exitCode, 2);
+  EXPECT_NE(option.err.find("unknown option '--bogus'"), std::string::npos) << option.err;
+  EXPECT_NE(option.err.find("usage: voxremesh info DECK"), std::string::npos) << option.err;
+  const CliRun missing = run("info");
+  EXPECT_EQ(missing.exitCode, 2);
+  EXPECT_NE(missing.err.find("missing argument"), std::string::npos) << missing.err;
+  EXPECT_EQ(run("convert only-one.k").exitCode, 2);
+  EXPECT_EQ(run("info a.k b.k").exitCode, 2);
+  EXPECT_EQ(run("info a.k --format").exitCode, 2);  // option without its value
+}
+
+TEST(Cli, InfoOnAMissingFileNamesIt) {
+  const fs::path missing = scratchDir("cli-missing") / "no-such-deck.k";
+  const CliRun r = run("info " + quoted(missing));
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.err.rfind("voxremesh: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(missing.string()), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+}
+
+TEST(Cli, InfoOnAMalformedDeckNamesFileAndLine) {
+  const fs::path dir = scratchDir("cli-malformed");
+  writeText(dir / "bad.k", malformedDeck());
+  const CliRun r = run("info " + quoted(dir / "bad.k"));
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.err.find((dir / "bad.k").string() + ":10"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+}
+
+TEST(Cli, InfoPrintsTheTableAndValidJson) {
+  const fs::path dir = scratchDir("cli-info");
+  writeText(dir / "deck.k", sampleDeck());
+  const CliRun table = run("info " + quoted(dir / "deck.k"));
+  ASSERT_EQ(table.exitCode, 0) << table.err;
+  EXPECT_NE(table.out.find("plate"), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find("gusset"), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find("total"), std::string::npos);
+  EXPECT_NE(table.out.find("Findings"), std::string::npos);
+
+  const CliRun json = run("info " + quoted(dir / "deck.k") + " --json");
+  ASSERT_EQ(json.exitCode, 0) << json.err;
+  EXPECT_TRUE(JsonChecker(json.out).valid()) << json.out;
+  for (const char* key :
+       {"\"model\"", "\"parts\"", "\"total\"", "\"examples\"", "\"boundaryEdges\"",
+        "\"nonManifoldEdges\"", "\"inconsistentEdges\"", "\"edgeLength\""})
+    EXPECT_NE(json.out.find(key), std::string::npos) << key;
+  EXPECT_EQ(jsonNumber(json.out, "nodes"), 22);
+  EXPECT_EQ(jsonNumber(json.out, "shells"), 14);
+  const std::size_t total = json.out.find("\"total\"");
+  EXPECT_EQ(jsonNumber(json.out, "quads", total), 12);
+  EXPECT_EQ(jsonNumber(json.out, "trias", total), 2);
+  // The trias share the grid's right edge nodes 5 and 10: boundary of the union 2 x (4 + 3) + 2.
+  EXPECT_EQ(jsonNumber(json.out, "boundaryEdges", total), 16);
+  EXPECT_EQ(jsonNumber(json.out, "boundaryLoops", total), 1);
+
+  // --tolerance is honoured and checked; --format reads a deck whatever its extension.
+  const CliRun tolerance = run("info " + quoted(dir / "deck.k") + " --json --tolerance 0.125");
+  ASSERT_EQ(tolerance.exitCode, 0) << tolerance.err;
+  EXPECT_EQ(jsonNumber(tolerance.out, "tolerance"), 0.125);
+  const CliRun badTolerance = run("info " + quoted(dir / "deck.k") + " --tolerance abc");
+  EXPECT_EQ(badTolerance.exitCode, 1);
+  EXPECT_NE(badTolerance.err.find("--tolerance expects a number, not 'abc'"), std::string::npos)
+      << badTolerance.err;
+  EXPECT_EQ(run("info " + quoted(dir / "deck.k") + " --tolerance -1").exitCode, 1);
+  fs::copy_file(dir / "deck.k", dir / "deck.txt");
+  EXPECT_EQ(run("info " + quoted(dir / "deck.txt")).exitCode, 1);  // unknown extension
+  EXPECT_EQ(run("info " + quoted(dir / "deck.txt") + " --format=k").exitCode, 0);
+}
+
+TEST(Cli, ConvertToObjAndBackKeepsTheCounts) {
+  const fs::path dir = scratchDir("cli-convert");
+  writeText(dir / "deck.k", sampleDeck());
+  const CliRun toObj = run("convert " + quoted(dir / "deck.k") + " " + quoted(dir / "mesh.obj"));
+  ASSERT_EQ(toObj.exitCode, 0) << toObj.err;
+  EXPECT_NE(toObj.out.find("wrote " + (dir / "mesh.obj").string() + ": 22 nodes, 14 shells"),
+            std::string::npos)
+      << toObj.out;
+  ASSERT_TRUE(fs::exists(dir / "mesh.obj"));
+  const CliRun back = run("convert " + quoted(dir / "mesh.obj") + " " + quoted(dir / "back.k"));
+  ASSERT_EQ(back.exitCode, 0) << back.err;
+
+  const CliRun original = run("info --json " + quoted(dir / "deck.k"));
+  const CliRun roundTrip = run("info --json " + quoted(dir / "back.k"));
+  ASSERT_EQ(roundTrip.exitCode, 0) << roundTrip.err;
+  const std::size_t a = original.out.find("\"total\""), b = roundTrip.out.find("\"total\"");
+  for (const char* key : {"nodes", "quads", "trias", "edges", "boundaryEdges"})
+    EXPECT_EQ(jsonNumber(original.out, key, a), jsonNumber(roundTrip.out, key, b)) << key;
+
+  // --ascii is for STL and PLY only: a warning, on stderr, for OBJ.
+  const CliRun ascii =
+      run("convert " + quoted(dir / "deck.k") + " " + quoted(dir / "ascii.obj") + " --ascii");
+  EXPECT_EQ(ascii.exitCode, 0);
+  EXPECT_NE(ascii.err.find("warning: --ascii only affects STL and PLY"), std::string::npos)
+      << ascii.err;
+}
+
+TEST(Cli, FailedConvertLeavesNoOutputFile) {
+  const fs::path dir = scratchDir("cli-convert-fail");
+  writeText(dir / "bad.k", malformedDeck());
+  const CliRun bad = run("convert " + quoted(dir / "bad.k") + " " + quoted(dir / "out.obj"));
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_EQ(bad.err.rfind("voxremesh: error: ", 0), 0u) << bad.err;
+  EXPECT_FALSE(fs::exists(dir / "out.obj"));
+  // An existing target stays as it was.
+  writeText(dir / "kept.obj", "old content\n");
+  EXPECT_EQ(run("convert " + quoted(dir / "bad.k") + " " + quoted(dir / "kept.obj")).exitCode, 1);
+  EXPECT_EQ(readText(dir / "kept.obj"), "old content\n");
+  // A target folder that does not exist.
+  writeText(dir / "good.k", sampleDeck());
+  const CliRun noFolder =
+      run("convert " + quoted(dir / "good.k") + " " + quoted(dir / "missing" / "out.obj"));
+  EXPECT_EQ(noFolder.exitCode, 1);
+  EXPECT_FALSE(fs::exists(dir / "missing" / "out.obj"));
+  // An unknown target format fails before anything is read or written.
+  const CliRun format = run("convert " + quoted(dir / "good.k") + " " + quoted(dir / "out.xyz"));
+  EXPECT_EQ(format.exitCode, 1);
+  EXPECT_NE(format.err.find("xyz"), std::string::npos) << format.err;
+  for (const auto& entry : fs::directory_iterator(dir))
+    EXPECT_TRUE(entry.path().extension() == ".k" || entry.path().filename() == "kept.obj")
+        << "left behind: " << entry.path();
+}

@@ -1,0 +1,141 @@
+// What the voxremesh subcommands share: the command functions main.cpp dispatches to, argument
+// parsing, usage errors, and printing warnings and output.
+#pragma once
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <initializer_list>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "voxremesh/errors.h"
+#include "voxremesh/io.h"
+
+namespace voxremesh::cli {
+
+/// A subcommand: receives the arguments after its name; returns the exit code. Throws UsageError
+/// for a malformed command line, anything else derived from std::exception for a failure.
+using CommandFunction = int (*)(const std::vector<std::string>& args);
+
+/// `voxremesh info` (cli_info.cpp).
+int runInfo(const std::vector<std::string>& args);
+/// `voxremesh convert` (cli_convert.cpp).
+int runConvert(const std::vector<std::string>& args);
+
+/// A malformed command line (unknown option, missing argument, ...): main prints the message and
+/// the command's usage line on stderr and exits with 2.
+class UsageError : public std::runtime_error {
+ public:
+  /// @param message what is wrong; @param usage the command's usage line ("voxremesh info DECK
+  /// ...")
+  UsageError(const std::string& message, std::string usage)
+      : std::runtime_error(message), usage_(std::move(usage)) {}
+  /// The usage line of the command the error is about.
+  const std::string& usage() const noexcept { return usage_; }
+
+ private:
+  std::string usage_;
+};
+
+/// An option a command accepts: its name ("--json") and whether a value follows it.
+struct OptionSpec {
+  const char* name;
+  bool takesValue;
+};
+
+/// A parsed command line: positional arguments in order, options by name.
+struct ParsedArgs {
+  std::vector<std::string> positional;
+  std::map<std::string, std::string> options;  ///< flags map to ""
+
+  /// The option was given.
+  bool has(const std::string& name) const { return options.count(name) != 0; }
+  /// The option's value, or nothing when it was not given.
+  std::optional<std::string> value(const std::string& name) const {
+    const auto it = options.find(name);
+    return it == options.end() ? std::nullopt : std::optional<std::string>(it->second);
+  }
+};
+
+/// The arguments ask for the command's help (-h or --help anywhere).
+inline bool wantsHelp(const std::vector<std::string>& args) {
+  for (const std::string& arg : args)
+    if (arg == "-h" || arg == "--help") return true;
+  return false;
+}
+
+/// Splits `args` into positional arguments and the given options ("--name value" or
+/// "--name=value"; "--" ends the options). Throws UsageError (with `usage`) for an unknown option,
+/// an option given twice, a missing or unexpected value, or a number of positional arguments
+/// outside [minPositional, maxPositional].
+inline ParsedArgs parseArgs(const std::vector<std::string>& args,
+                            std::initializer_list<OptionSpec> specs, std::size_t minPositional,
+                            std::size_t maxPositional, const std::string& usage) {
+  ParsedArgs parsed;
+  bool optionsEnded = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (optionsEnded || arg.size() < 2 || arg[0] != '-') {
+      parsed.positional.push_back(arg);
+      continue;
+    }
+    if (arg == "--") {
+      optionsEnded = true;
+      continue;
+    }
+    const std::size_t equals = arg.find('=');
+    const std::string name = arg.substr(0, equals);
+    const OptionSpec* spec = nullptr;
+    for (const OptionSpec& candidate : specs)
+      if (name == candidate.name) spec = &candidate;
+    if (!spec) throw UsageError("unknown option '" + name + "'", usage);
+    if (parsed.has(name)) throw UsageError("option " + name + " given twice", usage);
+    std::string value;
+    if (spec->takesValue) {
+      if (equals != std::string::npos)
+        value = arg.substr(equals + 1);
+      else if (i + 1 < args.size())
+        value = args[++i];
+      else
+        throw UsageError("option " + name + " needs a value", usage);
+    } else if (equals != std::string::npos) {
+      throw UsageError("option " + name + " takes no value", usage);
+    }
+    parsed.options[name] = value;
+  }
+  if (parsed.positional.size() < minPositional) throw UsageError("missing argument", usage);
+  if (parsed.positional.size() > maxPositional)
+    throw UsageError("unexpected argument '" + parsed.positional[maxPositional] + "'", usage);
+  return parsed;
+}
+
+/// Parses the value of a numeric option. Throws SettingError naming the option when `text` is not
+/// a finite number.
+inline double parseNumber(const std::string& option, const std::string& text) {
+  errno = 0;
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(value))
+    throw SettingError(option + " expects a number, not '" + text + "'");
+  return value;
+}
+
+/// Prints each warning on stderr as "warning: <text>".
+inline void printWarnings(const Warnings& warnings) {
+  for (const std::string& warning : warnings)
+    std::fprintf(stderr, "warning: %s\n", warning.c_str());
+}
+
+/// Writes `text` to stdout. Throws std::runtime_error when it cannot be written.
+inline void printOutput(const std::string& text) {
+  if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() || std::fflush(stdout) != 0)
+    throw std::runtime_error("cannot write to standard output");
+}
+
+}  // namespace voxremesh::cli
