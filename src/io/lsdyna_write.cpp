@@ -18,6 +18,13 @@ namespace voxremesh::io {
 
 namespace {
 
+/// Appends a real in a field of `width` columns, keeping its first column blank so that fields
+/// stay apart for readers (and engineers) that split at blanks.
+void appendRealField(std::string& out, double value, int width) {
+  out += ' ';
+  appendRealFixedWidth(out, value, width - 1);
+}
+
 using lsdyna::Card;
 using lsdyna::CardFormat;
 using lsdyna::Layout;
@@ -201,9 +208,9 @@ class DeckWriter {
                       layout.widths[3], layout.widths[4], layout.widths[5]};
     for (const Node& node : model_.nodes) {
       appendIntRight(out_, node.id, w[0]);
-      appendRealFixedWidth(out_, node.xyz[0], w[1]);
-      appendRealFixedWidth(out_, node.xyz[1], w[2]);
-      appendRealFixedWidth(out_, node.xyz[2], w[3]);
+      appendRealField(out_, node.xyz[0], w[1]);
+      appendRealField(out_, node.xyz[1], w[2]);
+      appendRealField(out_, node.xyz[2], w[3]);
       if (anyExtras) {
         const auto it = model_.nodeExtras.find(node.id);
         if (it != model_.nodeExtras.end() && (it->second.dynaTc != 0 || it->second.dynaRc != 0)) {
@@ -295,16 +302,16 @@ class DeckWriter {
       const ShellExtras& extras = found ? *found : none;
       if (options.hasThicknessCard()) {
         for (std::size_t k = 0; k < 4; ++k)
-          appendRealFixedWidth(out_, extras.thickness[k], card2.widths[k]);
+          appendRealField(out_, extras.thickness[k], card2.widths[k]);
         if (options.mcid)
           appendIntRight(out_, static_cast<std::int64_t>(std::llround(extras.angle)),
                          card2.widths[4]);
         else
-          appendRealFixedWidth(out_, extras.angle, card2.widths[4]);
+          appendRealField(out_, extras.angle, card2.widths[4]);
         out_ += eol_;
       }
       if (options.offset) {
-        appendRealFixedWidth(out_, extras.offset, card3.widths[0]);
+        appendRealField(out_, extras.offset, card3.widths[0]);
         out_ += eol_;
       }
     }
