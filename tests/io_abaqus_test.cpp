@@ -298,8 +298,8 @@ TEST(AbaqusRead, IncludeFilesAreMergedRelativeToTheIncludingFile) {
                             "*INCLUDE, INPUT=sub/step.inp\n");
   put(dir, "sub/step.inp", "*STEP\n*STATIC\n*END STEP\n");
   Warnings warnings;
-  // "3, 1, 1, 0" after the nested include is a data line of a verbatim keyword? No: more.inp's
-  // *NODE block goes on in the including file, as Abaqus reads the merged text.
+  // Abaqus reads the merged text: "3, 1, 1, 0" after the nested include continues the *NODE
+  // block that more.inp opened.
   const FeModel m = io::readAbaqus(main, warnings);
   ASSERT_EQ(m.nodes.size(), 4u);
   EXPECT_EQ(m.nodes[3].id, 3);
