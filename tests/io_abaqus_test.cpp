@@ -298,8 +298,8 @@ TEST(AbaqusRead, IncludeFilesAreMergedRelativeToTheIncludingFile) {
                             "*INCLUDE, INPUT=sub/step.inp\n");
   put(dir, "sub/step.inp", "*STEP\n*STATIC\n*END STEP\n");
   Warnings warnings;
-  // "3, 1, 1, 0" after the nested include is a data line of a verbatim keyword? No: more.inp's
-  // *NODE block goes on in the including file, as Abaqus reads the merged text.
+  // Abaqus reads the merged text: "3, 1, 1, 0" after the nested include continues the *NODE
+  // block that more.inp opened.
   const FeModel m = io::readAbaqus(main, warnings);
   ASSERT_EQ(m.nodes.size(), 4u);
   EXPECT_EQ(m.nodes[3].id, 3);
@@ -316,6 +316,32 @@ TEST(AbaqusRead, IncludeFilesAreMergedRelativeToTheIncludingFile) {
                    "file 'nowhere.inp' not found");
   const fs::path cycle = put(dir, "cycle.inp", "*HEADING\n*INCLUDE, INPUT=cycle.inp\n");
   expectInputError([&] { io::readAbaqus(cycle, warnings); }, cycle, 2, "includes itself");
+}
+
+TEST(AbaqusRead, DataFromInputFilesAndNotesOnGeneratorsAndFileReferences) {
+  const fs::path dir = test::scratchDir("abq_input");
+  put(dir, "data/nodes.txt", "1, 0, 0, 0\n2, 1, 0, 0\n3, 1, 1, 0\n4, 0, 1, 0");
+  put(dir, "data/elements.txt", "** quads\n5, 1, 2, 3, 4\n");
+  const fs::path main = put(dir, "main.inp",
+                            "*NODE, INPUT=data/nodes.txt\n"
+                            "*ELEMENT, TYPE=S4R, ELSET=P, INPUT=data/elements.txt\n"
+                            "*NGEN, NSET=LINE\n1, 2\n"
+                            "*AMPLITUDE, NAME=A, INPUT=amp.txt\n");
+  Warnings w;
+  const FeModel m = io::readAbaqus(main, w);
+  ASSERT_EQ(m.nodes.size(), 4u);
+  EXPECT_EQ(m.nodes[3].xyz, (std::array<double, 3>{0, 1, 0}));
+  ASSERT_EQ(m.shells.size(), 1u);
+  EXPECT_EQ(m.shells[0].id, 5);
+  EXPECT_TRUE(hasWarning(w, "*NGEN generates nodes or elements"));
+  EXPECT_TRUE(hasWarning(w, "*AMPLITUDE reads INPUT=amp.txt"));
+  EXPECT_EQ(verbatimText(m), "*NGEN, NSET=LINE\n1, 2\n*AMPLITUDE, NAME=A, INPUT=amp.txt\n");
+  const fs::path bad = put(dir, "bad.inp", "*NODE\n1, 0, 0, 0\n*NODE, INPUT=data/none.txt\n");
+  expectInputError([&] { io::readAbaqus(bad, w); }, bad, 3, "file 'data/none.txt' not found");
+  put(dir, "data/badnodes.txt", "1, 0, 0, 0\n2, 1, 0, zero\n");
+  const fs::path badData = put(dir, "baddata.inp", "*NODE, INPUT=data/badnodes.txt\n");
+  expectInputError([&] { io::readAbaqus(badData, w); }, dir / "data/badnodes.txt", 2,
+                   "malformed z coordinate 'zero'");
 }
 
 TEST(AbaqusRead, RefusesWhatItCannotCarryThrough) {

@@ -1,12 +1,13 @@
 // STL reader and writer, ASCII and binary. Vertices are merged by exact coordinates in
 // first-seen order; every facet is kept (also at non-manifold edges); ASCII solids are parts.
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string>
 #include <string_view>
-#include <unordered_map>
+#include <vector>
 
 #include "io/formats.h"
 #include "io/surface_builder.h"
@@ -22,35 +23,58 @@ using surface::MeshBuilder;
 constexpr std::size_t kHeaderBytes = 84;
 constexpr std::size_t kTriangleBytes = 50;
 
-/// Merges vertices with exactly equal coordinates (+0 and -0 count as equal).
+/// Merges vertices with exactly equal coordinates (+0 and -0 count as equal): an open-addressing
+/// hash table of vertex numbers whose coordinates live in the builder.
 class VertexMerger {
  public:
-  explicit VertexMerger(std::size_t expected) { ids_.reserve(expected); }
+  explicit VertexMerger(std::size_t expected) { resize(expected * 2 + 16); }
 
   /// The 1-based vertex number of `xyz`, adding the vertex to `builder` when it is new.
   std::int64_t id(std::array<double, 3> xyz, MeshBuilder& builder, std::size_t line) {
     for (double& v : xyz) v += 0.0;  // -0 becomes +0
-    const auto [it, inserted] =
-        ids_.emplace(xyz, static_cast<std::int64_t>(builder.vertexCount() + 1));
-    if (inserted) builder.addVertex(xyz, line);
-    return it->second;
+    std::size_t slot = hash(xyz) & mask_;
+    while (slots_[slot] != 0) {
+      const std::int64_t id = slots_[slot];
+      if (builder.vertex(static_cast<std::size_t>(id - 1)) == xyz) return id;
+      slot = (slot + 1) & mask_;
+    }
+    builder.addVertex(xyz, line);
+    const auto id = static_cast<std::int64_t>(builder.vertexCount());
+    slots_[slot] = id;
+    if (2 * static_cast<std::size_t>(id) > slots_.size()) rehash(builder);
+    return id;
   }
 
  private:
-  struct Hash {
-    std::size_t operator()(const std::array<double, 3>& p) const {
-      std::uint64_t h = 0x9e3779b97f4a7c15ull;
-      for (double v : p) {
-        std::uint64_t bits = 0;
-        std::memcpy(&bits, &v, sizeof bits);
-        h ^= bits + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
-        h *= 0xff51afd7ed558ccdull;
-        h ^= h >> 33;
-      }
-      return static_cast<std::size_t>(h);
+  static std::size_t hash(const std::array<double, 3>& p) {
+    std::uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (double v : p) {
+      std::uint64_t bits = 0;
+      std::memcpy(&bits, &v, sizeof bits);
+      h = (h ^ bits) * 0xff51afd7ed558ccdull;
+      h ^= h >> 32;
     }
-  };
-  std::unordered_map<std::array<double, 3>, std::int64_t, Hash> ids_;
+    return static_cast<std::size_t>(h);
+  }
+
+  void resize(std::size_t capacity) {
+    std::size_t size = 1024;
+    while (size < capacity) size *= 2;
+    slots_.assign(size, 0);
+    mask_ = size - 1;
+  }
+
+  void rehash(const MeshBuilder& builder) {
+    resize(slots_.size() * 2);
+    for (std::size_t i = 0; i < builder.vertexCount(); ++i) {
+      std::size_t slot = hash(builder.vertex(i)) & mask_;
+      while (slots_[slot] != 0) slot = (slot + 1) & mask_;
+      slots_[slot] = static_cast<std::int64_t>(i + 1);
+    }
+  }
+
+  std::vector<std::int64_t> slots_;
+  std::size_t mask_ = 0;
 };
 
 bool isBinaryStl(const std::string& content) {
@@ -168,6 +192,28 @@ void forEachTriangle(const FeModel& model, const surface::NodeIndexer& indexer, 
   }
 }
 
+/// Appends one ASCII facet: the normal to float precision (it is informational; readers
+/// recompute it), the corners with full precision.
+void appendAsciiFacet(std::string& out, const Node& a, const Node& b, const Node& c) {
+  out += "  facet normal";
+  for (double v : normalOf(a, b, c)) {
+    char buffer[24];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, static_cast<float>(v));
+    out += ' ';
+    out.append(buffer, result.ptr);
+  }
+  out += "\n    outer loop\n";
+  for (const Node* node : {&a, &b, &c}) {
+    out += "      vertex";
+    for (double v : node->xyz) {
+      out += ' ';
+      appendShortest(out, v);
+    }
+    out += '\n';
+  }
+  out += "    endloop\n  endfacet\n";
+}
+
 }  // namespace
 
 FeModel readStl(const std::filesystem::path& path, Warnings& warnings) {
@@ -236,41 +282,26 @@ void writeStl(const FeModel& model, std::string& out, bool binary, Warnings& war
     return;
   }
 
-  out.reserve(out.size() + triangles * 260);
+  out.reserve(out.size() + triangles * 240);
   bool open = false;
   Id current = 0;
   std::string name;
   auto close = [&]() {
     if (open) out += "endsolid " + name + '\n';
   };
-  forEachTriangle(model, indexer,
-                  [&](const Shell& shell, std::size_t a, std::size_t b, std::size_t c) {
-                    if (!open || shell.part != current) {
-                      close();
-                      name = surface::partLabel(model, shell.part);
-                      for (char& ch : name)
-                        if (ch == '\n' || ch == '\r') ch = ' ';
-                      out += "solid " + name + '\n';
-                      current = shell.part;
-                      open = true;
-                    }
-                    const Node* corners[3] = {&model.nodes[a], &model.nodes[b], &model.nodes[c]};
-                    out += "  facet normal";
-                    for (double v : normalOf(*corners[0], *corners[1], *corners[2])) {
-                      out += ' ';
-                      appendShortest(out, v);
-                    }
-                    out += "\n    outer loop\n";
-                    for (const Node* node : corners) {
-                      out += "      vertex";
-                      for (double v : node->xyz) {
-                        out += ' ';
-                        appendShortest(out, v);
-                      }
-                      out += '\n';
-                    }
-                    out += "    endloop\n  endfacet\n";
-                  });
+  auto facet = [&](const Shell& shell, std::size_t a, std::size_t b, std::size_t c) {
+    if (!open || shell.part != current) {
+      close();
+      name = surface::partLabel(model, shell.part);
+      for (char& ch : name)
+        if (ch == '\n' || ch == '\r') ch = ' ';
+      out += "solid " + name + '\n';
+      current = shell.part;
+      open = true;
+    }
+    appendAsciiFacet(out, model.nodes[a], model.nodes[b], model.nodes[c]);
+  };
+  forEachTriangle(model, indexer, facet);
   close();
   if (!open) out += "solid empty\nendsolid empty\n";
 }

@@ -65,6 +65,9 @@ class MeshBuilder {
   /// Number of vertices added so far.
   std::size_t vertexCount() const { return model_.nodes.size(); }
 
+  /// The coordinates of vertex `index` (0-based; index < vertexCount()).
+  const std::array<double, 3>& vertex(std::size_t index) const { return model_.nodes[index].xyz; }
+
   /// Makes the part called `name` the current one (created on first use; IDs are given in
   /// order of first appearance unless restored with restorePartId).
   void usePartNamed(std::string_view name) {
@@ -118,7 +121,6 @@ class MeshBuilder {
       return;
     }
     if (kept < count) ++collapsedQuads_;
-    shell.id = static_cast<Id>(model_.shells.size() + droppedFaces_ + 1);
     shell.nodeCount = static_cast<std::uint8_t>(kept);
     shell.part = static_cast<Id>(current_);
     model_.shells.push_back(shell);
