@@ -513,26 +513,11 @@ class DeckReader {
 
   /// Adds the parts that shells use but no *PART defines.
   void addUndefinedParts() {
-    std::unordered_set<Id> known;
-    for (const Part& part : model_.parts) known.insert(part.id);
-    std::vector<Id> missing;
-    Id last = 0;
-    bool haveLast = false;
-    for (const Shell& shell : model_.shells) {
-      if (haveLast && shell.part == last) continue;
-      last = shell.part;
-      haveLast = true;
-      if (known.insert(shell.part).second) missing.push_back(shell.part);
-    }
+    const std::vector<Id> missing = io::addUndefinedParts(model_);
     if (missing.empty()) return;
-    std::string list;
-    for (std::size_t i = 0; i < missing.size(); ++i) {
-      model_.parts.push_back(Part{missing[i], {}, false});
-      if (i < 10) list += (i ? ", " : "") + std::to_string(missing[i]);
-    }
-    if (missing.size() > 10) list += ", ...";
     warnings_.push_back(std::to_string(missing.size()) +
-                        " part(s) used by shells are not defined by any *PART (" + list +
+                        " part(s) used by shells are not defined by any *PART (" +
+                        listIds(missing) +
                         "): they are added without a name, and a written LS-DYNA deck gets *PART "
                         "cards for them whose SECID and MID must be set");
   }

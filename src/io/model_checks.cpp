@@ -1,6 +1,7 @@
 #include "io/model_checks.h"
 
 #include <unordered_map>
+#include <unordered_set>
 
 #include "voxremesh/errors.h"
 
@@ -19,6 +20,27 @@ std::string SourceMap::nodeLocation(std::size_t i) const {
 std::string SourceMap::shellLocation(std::size_t i) const {
   if (i >= shells_.size()) return "?";
   return files_[shells_[i].file] + ":" + std::to_string(shells_[i].line);
+}
+
+std::vector<Id> addUndefinedParts(FeModel& model) {
+  std::unordered_set<Id> known;
+  for (const Part& part : model.parts) known.insert(part.id);
+  std::vector<Id> missing;
+  for (std::size_t i = 0; i < model.shells.size(); ++i) {
+    const Id part = model.shells[i].part;
+    if (i > 0 && part == model.shells[i - 1].part) continue;  // runs of one part are common
+    if (known.insert(part).second) missing.push_back(part);
+  }
+  for (const Id id : missing) model.parts.push_back(Part{id, {}, false});
+  return missing;
+}
+
+std::string listIds(const std::vector<Id>& ids, std::size_t shown) {
+  std::string list;
+  for (std::size_t i = 0; i < ids.size() && i < shown; ++i)
+    list += (i ? ", " : "") + std::to_string(ids[i]);
+  if (ids.size() > shown) list += ", ...";
+  return list;
 }
 
 void checkModel(const FeModel& model, const SourceMap& sources) {

@@ -39,6 +39,13 @@ class SourceMap {
   std::vector<Location> shells_;
 };
 
+/// Appends a nameless part (definedInBlocks = false) for every part ID that shells use but
+/// model.parts lacks, in order of first use, and returns those IDs.
+std::vector<Id> addUndefinedParts(FeModel& model);
+
+/// "1, 2, 3, ..." of at most `shown` IDs, for messages.
+std::string listIds(const std::vector<Id>& ids, std::size_t shown = 10);
+
 /// Checks IDs and references after reading: duplicate node IDs, duplicate shell IDs, shells naming
 /// a node the deck does not define, shells naming one node twice.
 /// Throws InputError naming the file and line of the offending card (and of the first definition

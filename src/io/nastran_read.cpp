@@ -665,22 +665,12 @@ class Reader {
                            "deck with GRID coordinates in the basic system",
                        gridSetText_);
     // Parts the elements use without a property card.
-    std::unordered_map<Id, bool> known;
-    for (const Part& part : model_.parts) known.emplace(part.id, true);
-    Id last = 0;
-    bool haveLast = false;
-    for (const Shell& shell : model_.shells) {
-      if (haveLast && shell.part == last) continue;
-      last = shell.part;
-      haveLast = true;
-      if (known.emplace(shell.part, true).second) {
-        Part& part = model_.partOrAdd(shell.part);
-        part.definedInBlocks = false;
-        warnings_.push_back("elements use property " + std::to_string(shell.part) +
-                            ", which the deck does not define (no PSHELL or PCOMP); a PSHELL is "
-                            "generated for it when the model is written as Nastran");
-      }
-    }
+    const std::vector<Id> missing = addUndefinedParts(model_);
+    if (!missing.empty())
+      warnings_.push_back(std::string("elements use ") +
+                          (missing.size() == 1 ? "property " : "properties ") + listIds(missing) +
+                          ", which the deck does not define (no PSHELL or PCOMP); a PSHELL is "
+                          "generated for each when the model is written as Nastran");
     for (Part& part : model_.parts)
       if (const std::string* name = names_.find(part.id)) part.name = *name;
     checkModel(model_, sources_);

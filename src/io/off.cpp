@@ -155,11 +155,7 @@ void writeOff(const FeModel& model, std::string& out, Warnings& warnings) {
   surface::appendInt(out, static_cast<std::int64_t>(model.shells.size()));
   out += " 0\n";
   for (const Node& node : model.nodes) {
-    appendShortest(out, node.xyz[0]);
-    out += ' ';
-    appendShortest(out, node.xyz[1]);
-    out += ' ';
-    appendShortest(out, node.xyz[2]);
+    surface::appendXyz(out, node.xyz);
     out += '\n';
   }
   for (const Shell& shell : model.shells) {

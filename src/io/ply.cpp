@@ -540,11 +540,7 @@ void writePly(const FeModel& model, std::string& out, bool binary, Warnings& war
     return;
   }
   for (const Node& node : model.nodes) {
-    appendShortest(out, node.xyz[0]);
-    out += ' ';
-    appendShortest(out, node.xyz[1]);
-    out += ' ';
-    appendShortest(out, node.xyz[2]);
+    surface::appendXyz(out, node.xyz);
     out += '\n';
   }
   for (const Shell& shell : model.shells) {

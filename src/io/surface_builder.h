@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "io/model_checks.h"
+#include "io/text_scan.h"
 #include "voxremesh/errors.h"
 #include "voxremesh/fe_model.h"
 #include "voxremesh/io.h"
@@ -30,6 +31,15 @@ inline void appendInt(std::string& out, std::int64_t value) {
   char buffer[24];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
   out.append(buffer, result.ptr);
+}
+
+/// Appends "x y z" in the shortest form that reads back exactly (no terminator).
+inline void appendXyz(std::string& out, const std::array<double, 3>& xyz) {
+  appendShortest(out, xyz[0]);
+  out += ' ';
+  appendShortest(out, xyz[1]);
+  out += ' ';
+  appendShortest(out, xyz[2]);
 }
 
 /// Builds an FeModel from a surface mesh read in file order. Vertices become nodes 1..n, faces

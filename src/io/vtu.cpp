@@ -128,11 +128,7 @@ void writeVtuContent(const FeModel& model, std::string& out, const std::vector<F
   openArray(out, "Float64", "Points", 3);
   for (const Node& node : model.nodes) {
     out += "          ";
-    appendShortest(out, node.xyz[0]);
-    out += ' ';
-    appendShortest(out, node.xyz[1]);
-    out += ' ';
-    appendShortest(out, node.xyz[2]);
+    surface::appendXyz(out, node.xyz);
     out += '\n';
   }
   closeArray(out);
