@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "io/text_scan.h"
+#include "support/json.h"
 #include "support/test_support.h"
 
 namespace fs = std::filesystem;
@@ -96,101 +97,6 @@ double jsonNumber(const std::string& json, const std::string& key, std::size_t f
   return std::strtod(json.c_str() + at + key.size() + 3, nullptr);
 }
 
-// Checks that `text` is one complete, valid JSON value (strict grammar; no extensions).
-class JsonChecker {
- public:
-  explicit JsonChecker(const std::string& text) : s_(text) {}
-  bool valid() {
-    try {
-      value();
-      space();
-      return i_ == s_.size();
-    } catch (const std::exception&) {
-      return false;
-    }
-  }
-
- private:
-  void fail() { throw std::runtime_error("invalid JSON at " + std::to_string(i_)); }
-  char peek() { return i_ < s_.size() ? s_[i_] : '\0'; }
-  void expect(char c) {
-    if (peek() != c) fail();
-    ++i_;
-  }
-  void space() {
-    while (peek() == ' ' || peek() == '\n' || peek() == '\t' || peek() == '\r') ++i_;
-  }
-  void digits() {
-    if (!std::isdigit(static_cast<unsigned char>(peek()))) fail();
-    while (std::isdigit(static_cast<unsigned char>(peek()))) ++i_;
-  }
-  void value() {
-    space();
-    const char c = peek();
-    if (c == '{' || c == '[') {
-      const char close = c == '{' ? '}' : ']';
-      ++i_;
-      space();
-      if (peek() == close) return void(++i_);
-      for (;;) {
-        if (c == '{') {
-          space();
-          string();
-          space();
-          expect(':');
-        }
-        value();
-        space();
-        if (peek() == ',') {
-          ++i_;
-          continue;
-        }
-        expect(close);
-        return;
-      }
-    }
-    if (c == '"') return string();
-    for (const char* word : {"true", "false", "null"})
-      if (s_.compare(i_, std::string(word).size(), word) == 0)
-        return void(i_ += std::string(word).size());
-    if (peek() == '-') ++i_;
-    if (peek() == '0')
-      ++i_;
-    else
-      digits();
-    if (peek() == '.') ++i_, digits();
-    if (peek() == 'e' || peek() == 'E') {
-      ++i_;
-      if (peek() == '+' || peek() == '-') ++i_;
-      digits();
-    }
-  }
-  void string() {
-    expect('"');
-    while (peek() != '"') {
-      const unsigned char c = static_cast<unsigned char>(peek());
-      if (c == '\0' || c < 0x20) fail();
-      ++i_;
-      if (c == '\\') {
-        const char e = peek();
-        ++i_;
-        if (e == 'u') {
-          for (int k = 0; k < 4; ++k) {
-            if (!std::isxdigit(static_cast<unsigned char>(peek()))) fail();
-            ++i_;
-          }
-        } else if (std::string("\"\\/bfnrt").find(e) == std::string::npos) {
-          fail();
-        }
-      }
-    }
-    ++i_;
-  }
-
-  const std::string& s_;
-  std::size_t i_ = 0;
-};
-
 }  // namespace
 
 TEST(Cli, HelpListsTheCommands) {
@@ -265,7 +171,7 @@ TEST(Cli, InfoPrintsTheTableAndValidJson) {
 
   const CliRun json = run("info " + quoted(dir / "deck.k") + " --json");
   ASSERT_EQ(json.exitCode, 0) << json.err;
-  EXPECT_TRUE(JsonChecker(json.out).valid()) << json.out;
+  EXPECT_NO_THROW(voxremesh::test::parseJson(json.out)) << json.out;
   for (const char* key :
        {"\"model\"", "\"parts\"", "\"total\"", "\"examples\"", "\"boundaryEdges\"",
         "\"nonManifoldEdges\"", "\"inconsistentEdges\"", "\"edgeLength\""})
