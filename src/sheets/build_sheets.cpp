@@ -65,6 +65,8 @@ std::vector<Sheet> buildAllSheets(const FeModel& model, const SheetSettings& set
   const std::size_t parts = context.partIds.size();
   std::vector<std::vector<Sheet>> perPart(parts);
   std::vector<std::exception_ptr> errors(parts);
+  // makePartMesh leaves its scratch as it found it before the per-sheet parallel loop starts, so
+  // a part task that TBB runs on this thread inside that loop may use the same scratch.
   tbb::enumerable_thread_specific<std::vector<Index>> scratch(
       [&] { return std::vector<Index>(model.nodes.size(), kNoIndex); });
   tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t entry) {

@@ -51,8 +51,9 @@ inline double angleDeg(const Vec3& a, const Vec3& b) {
 /// What buildSheets needs of the whole model, computed once.
 struct ModelContext {
   const FeModel& model;
-  std::vector<ShellCorners> corners;  ///< per model shell: node indices as the model lists them
-  std::vector<Id> partIds;            ///< parts with shells, in output order
+  std::vector<ShellCorners> corners;   ///< per model shell: node indices as the model lists them
+  std::vector<Id> partIds;             ///< parts with shells, in output order
+  std::vector<std::string> partNames;  ///< per entry of partIds: the name ("" when undefined)
   std::vector<std::vector<Index>> partShells;  ///< per entry of partIds: model shell indices
   /// Nodes used by shells of several parts: the part entries (indices into partIds, ascending) of
   /// node v are sharedParts[sharedBegin[v] .. sharedBegin[v + 1]); empty for other nodes. Both

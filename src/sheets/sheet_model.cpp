@@ -29,14 +29,18 @@ bool ModelContext::sharedWithOtherPart(Index u, Index v, Index part) const {
 }
 
 ModelContext makeModelContext(const FeModel& model) {
-  ModelContext context{model, model::shellCorners(model), {}, {}, {}, {}};
+  ModelContext context{model, model::shellCorners(model), {}, {}, {}, {}, {}};
 
   // Entries: the model's parts in order, then undefined parts named by shells, ascending; parts
   // without shells are dropped afterwards.
   std::unordered_map<Id, Index> entryOf;
   std::vector<Id> ids;
+  std::vector<std::string> names;
   for (const Part& part : model.parts)
-    if (entryOf.emplace(part.id, Index(ids.size())).second) ids.push_back(part.id);
+    if (entryOf.emplace(part.id, Index(ids.size())).second) {
+      ids.push_back(part.id);
+      names.push_back(part.name);
+    }
   std::vector<Id> undefined;
   for (const Shell& shell : model.shells)
     if (entryOf.find(shell.part) == entryOf.end()) {
@@ -47,6 +51,7 @@ ModelContext makeModelContext(const FeModel& model) {
   for (const Id id : undefined) {
     entryOf[id] = Index(ids.size());
     ids.push_back(id);
+    names.emplace_back();
   }
   std::vector<std::vector<Index>> shells(ids.size());
   std::vector<Index> entryOfShell(model.shells.size());
@@ -65,6 +70,7 @@ ModelContext makeModelContext(const FeModel& model) {
     if (shells[e].empty()) continue;
     compact[e] = Index(context.partIds.size());
     context.partIds.push_back(ids[e]);
+    context.partNames.push_back(std::move(names[e]));
     context.partShells.push_back(std::move(shells[e]));
   }
   for (Index& entry : entryOfShell) entry = compact[entry];
@@ -104,13 +110,12 @@ ModelContext makeModelContext(const FeModel& model) {
 }
 
 PartMesh makePartMesh(const ModelContext& context, Index partEntry, std::vector<Index>& localOf) {
-  const FeModel& model = context.model;
   PartMesh part;
   part.partEntry = partEntry;
   part.part = context.partIds[partEntry];
   part.label = "part " + std::to_string(part.part);
-  if (const Part* defined = model.findPart(part.part); defined && !defined->name.empty())
-    part.label += " (" + defined->name + ")";
+  if (!context.partNames[partEntry].empty())
+    part.label += " (" + context.partNames[partEntry] + ")";
 
   const std::vector<Index>& shells = context.partShells[partEntry];
   part.shells.reserve(shells.size());
