@@ -3,6 +3,7 @@
 // and the invalid flag, in parallel over the leaves.
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/MeshToVolume.h>
+#include <openvdb/tools/Morphology.h>
 #include <openvdb/tools/Prune.h>
 #include <openvdb/tools/SignedFloodFill.h>
 #include <openvdb/tree/LeafManager.h>
@@ -50,10 +51,11 @@ void computeSignedDistance(const SurfaceMesh& mesh, const openvdb::math::Transfo
   const double band = settings.bandWidthVoxels * voxelSize;
   const float background = static_cast<float>(band);
 
-  // The band and a start polygon per voxel. meshToVolume's band is ragged near its outer edge
-  // (it grows from voxels at most band - 1 voxel away), so ask for one voxel more, then trim to
-  // the exact band.
-  const float m2vBand = static_cast<float>(settings.bandWidthVoxels + 1.0);
+  // The band and a start polygon per voxel. meshToVolume grows its band only beyond two voxels,
+  // and near the band's outer edge its band is ragged (it grows from voxels at most band - 1
+  // voxel away, and its distances there can be too large): dilate the band by one voxel and let
+  // the exact pass below decide every voxel, new ones starting from their neighbours' polygons.
+  const float m2vBand = static_cast<float>(std::max(settings.bandWidthVoxels, 2.0));
   openvdb::Int32Grid::Ptr index =
       openvdb::Int32Grid::create(openvdb::Int32(openvdb::util::INVALID_IDX));
   const MeshAdapter adapter(mesh, voxelSize);
@@ -62,7 +64,9 @@ void computeSignedDistance(const SurfaceMesh& mesh, const openvdb::math::Transfo
   sdf->setTransform(transform);
   sdf->setName(kSdfGridName);
   sdf->setGridClass(openvdb::GRID_LEVEL_SET);
-  openvdb::tools::changeBackground(sdf->tree(), background);
+  if (sdf->background() != background) openvdb::tools::changeBackground(sdf->tree(), background);
+  openvdb::tools::dilateActiveValues(sdf->tree(), 1, openvdb::tools::NN_FACE,
+                                     openvdb::tools::IGNORE_TILES);
 
   // Exact distance, side and invalid flag per active voxel.
   openvdb::tree::LeafManager<openvdb::FloatTree> leaves(sdf->tree());
@@ -84,35 +88,43 @@ void computeSignedDistance(const SurfaceMesh& mesh, const openvdb::math::Transfo
           for (auto it = active.beginOn(); it; ++it) {
             const openvdb::Index pos = it.pos();
             const openvdb::Coord ijk = leaf.offsetToGlobalCoord(pos);
-            // Start polygons: the voxel's own closest polygon and those of its six face
-            // neighbours (meshToVolume's index can be a farther polygon where only that one's
-            // rasterisation reached the voxel), sorted, without repeats.
+            const V3 p{ijk.x() * voxelSize, ijk.y() * voxelSize, ijk.z() * voxelSize};
+            // Descend from the voxel's own closest polygon. A face interior reached that way is a
+            // local minimum of a smooth region and taken. Otherwise (an edge or corner is
+            // closest, or the voxel came with the dilation) meshToVolume's polygon can be a
+            // farther one that alone reached the voxel: start from the polygons of the six face
+            // neighbours too, as a sorted set so that the result depends on the set only.
             std::uint32_t starts[7];
             std::size_t count = 0;
-            for (int n6 = -1; n6 < 6; ++n6) {
-              openvdb::Int32 polygon = -1;
-              if (n6 < 0) {
-                if (indexLeaf && indexLeaf->isValueOn(pos)) polygon = indexLeaf->getValue(pos);
-              } else if (!indexAccessor.probeValue(ijk + openvdb::util::COORD_OFFSETS[n6],
-                                                   polygon)) {
+            ClosestPoint c;
+            const bool own = indexLeaf && indexLeaf->isValueOn(pos);
+            const openvdb::Int32 ownPolygon = own ? indexLeaf->getValue(pos) : -1;
+            if (ownPolygon >= 0 && std::size_t(ownPolygon) < mesh.polygons.size()) {
+              starts[count++] = static_cast<std::uint32_t>(ownPolygon);
+              c = closestPointFrom(mesh, starts, 1, p, tolerance);
+            }
+            if (count == 0 || c.kind != ClosestKind::Face) {
+              for (int n6 = 0; n6 < 6; ++n6) {
+                openvdb::Int32 polygon = -1;
+                if (!indexAccessor.probeValue(ijk + openvdb::util::COORD_OFFSETS[n6], polygon) ||
+                    polygon < 0 || std::size_t(polygon) >= mesh.polygons.size()) {
+                  continue;
+                }
+                // Insert sorted, skipping repeats.
+                const auto value = static_cast<std::uint32_t>(polygon);
+                std::size_t at = count;
+                while (at > 0 && starts[at - 1] > value) --at;
+                if (at > 0 && starts[at - 1] == value) continue;
+                for (std::size_t k = count; k > at; --k) starts[k] = starts[k - 1];
+                starts[at] = value;
+                ++count;
+              }
+              if (count == 0) {
+                leaf.setValueOff(pos, background);
                 continue;
               }
-              if (polygon < 0 || std::size_t(polygon) >= mesh.polygons.size()) continue;
-              // Insert sorted, skipping repeats.
-              const auto value = static_cast<std::uint32_t>(polygon);
-              std::size_t at = count;
-              while (at > 0 && starts[at - 1] > value) --at;
-              if (at > 0 && starts[at - 1] == value) continue;
-              for (std::size_t k = count; k > at; --k) starts[k] = starts[k - 1];
-              starts[at] = value;
-              ++count;
+              c = closestPointFrom(mesh, starts, count, p, tolerance);
             }
-            if (count == 0) {
-              leaf.setValueOff(pos, background);
-              continue;
-            }
-            const V3 p{ijk.x() * voxelSize, ijk.y() * voxelSize, ijk.z() * voxelSize};
-            const ClosestPoint c = closestPointFrom(mesh, starts, count, p, tolerance);
             const double distance = std::sqrt(c.distance2);
             const V3 v = p - c.point;
             const double side = dot(v, pseudoNormal(mesh, c)) < 0.0 ? -1.0 : 1.0;
