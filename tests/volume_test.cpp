@@ -108,15 +108,15 @@ void forEachVoxelNear(const Volume& volume, const std::vector<Sheet>& sheets,
 
 // ---------------------------------------------------------------------------------------------
 // Flat square [0,10]^2 with the square hole (4,6)^2, quads of size 1, normal +z, moved off the
-// voxel lattice.
+// voxel lattice (or on it).
 
 const P3 kPlateOrigin{0.37, 0.21, 0.13};
 
-Sheet plateWithHole() {
+Sheet plateWithHole(const P3& origin = kPlateOrigin) {
   return gridSheet(
       10, 10,
-      [](int i, int j) {
-        return add(kPlateOrigin, P3{double(i), double(j), 0.0});
+      [&](int i, int j) {
+        return add(origin, P3{double(i), double(j), 0.0});
       },
       [](int i, int j) { return i >= 4 && i < 6 && j >= 4 && j < 6; });
 }
@@ -131,9 +131,9 @@ double plateDistance2D(double x, double y) {
   return 0.0;
 }
 
-TEST(SignedDistance, PlateWithHoleIsExactSignedAndBoundaryVoxelsAreInvalid) {
-  const std::vector<Sheet> sheets{plateWithHole()};
-  const double h = 0.5;
+/// Checks the volume of a plate with hole at `origin` (possibly re-meshed) against the analytic
+/// distance, sign (+z side positive) and invalid rule.
+void checkPlate(const std::vector<Sheet>& sheets, const P3& origin, double h) {
   const Volume volume = voxremesh::buildVolume(sheets, explicitSize(h));
   const auto& impl = volume.impl();
   ASSERT_TRUE(impl.sdf && impl.invalid && impl.feature);
@@ -143,13 +143,12 @@ TEST(SignedDistance, PlateWithHoleIsExactSignedAndBoundaryVoxelsAreInvalid) {
   EXPECT_EQ(impl.sdf->transformPtr(), impl.feature->transformPtr());
 
   const double band = 3.0 * h;
-  const double cos60 = std::cos(60.0 * M_PI / 180.0);
   auto invalid = impl.invalid->getConstAccessor();
   std::size_t checked = 0, interior = 0, invalidSeen = 0, beyondHole = 0;
   forEachVoxelNear(volume, sheets,
                    [&](const openvdb::Coord& ijk, const P3& p, float value, bool active) {
-                     const double x = p[0] - kPlateOrigin[0], y = p[1] - kPlateOrigin[1];
-                     const double dz = p[2] - kPlateOrigin[2];
+                     const double x = p[0] - origin[0], y = p[1] - origin[1];
+                     const double dz = p[2] - origin[2];
                      const double d2 = plateDistance2D(x, y);
                      const double exact = std::hypot(d2, dz);
                      if (exact < band - 1e-3 * h) {
@@ -181,13 +180,41 @@ TEST(SignedDistance, PlateWithHoleIsExactSignedAndBoundaryVoxelsAreInvalid) {
                      }
                      invalidSeen += isInvalid;
                      if (isInvalid && x > 4.0 && x < 6.0 && y > 4.0 && y < 6.0) ++beyondHole;
-                     (void)cos60;
                    });
   EXPECT_GT(checked, 1000u);
   EXPECT_GT(interior, 500u);
   EXPECT_GT(invalidSeen, 100u);
   EXPECT_GT(beyondHole, 10u) << "voxels in the hole must be invalid";
   EXPECT_EQ(impl.invalid->activeVoxelCount(), invalidSeen);
+}
+
+TEST(SignedDistance, PlateWithHoleIsExactSignedAndBoundaryVoxelsAreInvalid) {
+  checkPlate({plateWithHole()}, kPlateOrigin, 0.5);
+}
+
+TEST(SignedDistance, PlateOnTheLatticeKeepsVoxelsAboveItsEdgesValid) {
+  // Plane and boundary lines through voxel centres: voxels straight above a free edge tie
+  // between the face and the edge (the face wins, valid), voxels in the plane beyond it are
+  // invalid, voxels on the sheet are 0.
+  const P3 origin{0.0, 0.0, 0.0};
+  checkPlate({plateWithHole(origin)}, origin, 0.5);
+}
+
+TEST(SignedDistance, TrianglesAndCollapsedQuadsGiveTheSameDistances) {
+  // The same plate with some cells split into two triangles and some given as a quad with a
+  // repeated corner (as decks write triangles) plus a triangle.
+  Sheet sheet = plateWithHole();
+  const std::size_t n = sheet.faces.size();
+  for (std::size_t f = 0; f < n; f += 3) {
+    const auto q = sheet.faces[f];
+    if (f % 2 == 0) {
+      sheet.faces[f] = {q[0], q[1], q[2], voxremesh::kNoPoint};
+    } else {
+      sheet.faces[f] = {q[0], q[1], q[2], q[2]};
+    }
+    sheet.faces.push_back({q[0], q[2], q[3], voxremesh::kNoPoint});
+  }
+  checkPlate({sheet}, kPlateOrigin, 0.5);
 }
 
 // ---------------------------------------------------------------------------------------------
