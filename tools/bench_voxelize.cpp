@@ -173,7 +173,7 @@ int main(int argc, char** argv) {
               threads > 0 ? std::to_string(threads).c_str() : "all", repeat);
   std::printf("%8s %12s %12s %10s %10s %7s | %8s %8s %8s %8s\n", "voxel", "active(vdb)",
               "active(vxr)", "openvdb s", "voxrem s", "ratio", "mesh s", "sdf s", "feature s",
-              "us/kvox");
+              "ns/voxel");
   for (const double h : sizes) {
     const auto transform = openvdb::math::Transform::createLinearTransform(h);
     const Adapter adapter{&rail, 1.0 / h};

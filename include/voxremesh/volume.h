@@ -7,11 +7,15 @@
 // Conventions
 // - Index space: voxel (i,j,k) is the sample at world position (i,j,k) * voxelSize (the transform
 //   is a uniform scale, no offset).
-// - sdf: FloatGrid, class level set, background = band * voxelSize. Active voxels are exactly those
-//   whose distance to the sheets is below the band; value = s * d, d the exact distance to the
-//   closest point of the closest sheet (quads split into triangles 0-1-2 and 0-2-3), s the side
-//   of that closest point after orientation (+1 on the side the face normals point to).
-//   Inactive values are +-background by that side.
+// - sdf: FloatGrid, class level set, background = band * voxelSize. Active voxels are those whose
+//   distance to the sheets is below the band; value = s * d, d the exact distance to the closest
+//   point of the closest sheet (quads split into triangles 0-1-2 and 0-2-3), s the side of that
+//   closest point after orientation (+1 on the side the face normals point to; on an edge or
+//   corner shared by several faces, the side of its angle-weighted pseudo-normal). The closest
+//   point is searched from OpenVDB meshToVolume's closest polygon of the voxel (and of its six
+//   neighbours where an edge or corner comes out closest) by descending to adjacent triangles;
+//   meshToVolume's band is dilated by one voxel first, because its outer layer is ragged.
+//   Inactive values are +-background, signed by flood fill from the active voxels.
 // - invalid: MaskGrid of voxels (samples) whose closest point lies on a free boundary edge or
 //   boundary vertex while the distance vector leans more than invalidAngleDeg away from the face
 //   normal there (Bidmon et al., Sect. 3). No surface may be extracted from a cell touching one.
