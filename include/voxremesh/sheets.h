@@ -1,6 +1,62 @@
 // Sheets: the clean, manifold, consistently oriented pieces a part is split into before it is
 // written into a volume, with the curves extraction must keep (boundary loops, feature lines,
 // feature points, junction curves).
+//
+// Definitions (buildSheets, buildAllSheets):
+// - Faces. Every shell of the part is one face, except shells without a surface: a shell whose
+//   corners, after dropping a corner equal to the one before it (cyclically), are fewer than three
+//   or still name a node twice (a line, a point, or a quad folded onto itself like a-b-a-c). Those
+//   belong to no sheet. A quad with one repeated corner (a-a-b-c) is the triangle a-b-c.
+// - Splitting. An edge of the part is manifold when exactly two faces use it, non-manifold when
+//   three or more do. A sheet is a maximal set of faces connected across manifold edges; sheets are
+//   ordered by their first face, faces by their order in the model.
+// - Orientation. Each sheet is oriented by a breadth-first walk from its first face across its
+//   manifold edges, flipping faces so that the two faces of every manifold edge run along it in
+//   opposite directions. Then the orientation that more of the original faces had is kept (on a
+//   tie, the first face's). A flipped face lists its corners in reverse order starting from the
+//   same first corner (a-b-c-d becomes a-d-c-b) and has faceFlipped set. When the walk meets a
+//   face it already oriented the other way across a manifold edge, the sheet is not orientable
+//   (Moebius-like): buildSheets throws InputError naming the part, that shell and the edge.
+// - Non-manifold edges inside a sheet. A sheet can hold several faces of one non-manifold edge
+//   when they are connected around it (a plate with a fin welded along part of its middle). Of
+//   those, the pair that runs along the edge in opposite directions and is the most nearly flat is
+//   joined (the edge is inside the sheet); the others are cut apart along the edge: the sheet gets
+//   a separate point per side of the cut, so pointNodeIds can then name a node more than once
+//   (the faces around a node that are joined across edges share one point). Where that is still
+//   not enough (faces of a cut joined around both its ends), the faces of the cut edge that are
+//   not joined across it get points of their own at its ends. Nodes are otherwise not split, also
+//   not where two fans of faces touch at a single node (that does not affect orientation, and the
+//   boundary loops pass such a node once per fan). The result is that every edge of a sheet's
+//   points has one face (boundary) or two faces running along it in opposite directions.
+// - Points. The points of a sheet are the nodes its faces use, numbered by first use in face
+//   order (corners in the face's oriented order).
+// - Boundary loops. The sheet's boundary edges (one face) chained into closed loops that run the
+//   way the faces run along them: with the face on the left seen from the normal, so an outer
+//   contour runs counter-clockwise and a hole clockwise. At a point with more than two boundary
+//   edges the loops are paired by walking around the point through the faces (as the deck report
+//   does, model::boundaryChains). A loop starts at its lowest sheet edge.
+// - Normals and dihedral angles. A triangle's normal is (p1 - p0) x (p2 - p0); a quad's is the
+//   cross product of its diagonals, (p2 - p0) x (p3 - p1), the area-weighted average of its four
+//   corner triangles' normals (less sensitive to warping than a single corner triangle). The
+//   dihedral angle of an inner edge is the angle between the oriented normals of its two faces:
+//   0 where the sheet is flat, 90 at a right-angled bend. Faces with a zero normal make no feature.
+// - Feature lines. Inner edges whose dihedral angle exceeds featureAngleDeg, chained into
+//   polylines that stop at points where feature edges end or branch (one or three and more
+//   feature edges) and at boundary points. A ring of feature edges with a single stop on it starts
+//   and ends at that point (an open polyline repeating it); a ring without any stop is closed.
+//   Open polylines come first, walked from their stops in ascending point order, then closed
+//   ones, each starting at the lower point of its lowest sheet edge (so are junction curves).
+// - Feature points. Ascending, without repeats: the ends of open feature polylines (ends and
+//   branch points of feature lines, and where they meet the boundary), and the points where a
+//   boundary loop or a feature polyline turns by more than cornerAngleDeg (the angle between the
+//   incoming and the outgoing segment; a point next to a zero-length segment is no corner).
+// - Junction curves. Sheet edges whose part edge is non-manifold (where this sheet met other
+//   sheets of the part, or itself), and sheet edges whose two nodes are both used by shells of one
+//   same other part (a seam where parts share nodes). Chained into polylines that stop where
+//   junction edges end or branch; without any stop, closed. A single node shared with another
+//   part (a spot connection) is no curve and is not reported. The seam rule looks at nodes only:
+//   an edge joining two seam nodes across a corner of the seam (a triangle cutting the corner)
+//   counts too.
 #pragma once
 
 #include <array>
@@ -47,5 +103,27 @@ struct SheetSettings {
   double cornerAngleDeg = 30.0;   ///< a boundary or feature-line point is a corner when the curve
                                   ///< turns by more than this there
 };
+
+/// Splits the shells of one part into sheets and finds their curves (see the definitions at the
+/// top of the file).
+/// @param model     the model; node IDs unique, every shell naming existing nodes (as readDeck
+///                  ensures)
+/// @param part      the part ID; a part without shells gives no sheets
+/// @param settings  feature and corner thresholds
+/// @return the part's sheets, ordered by their first face; deterministic
+/// Throws SettingError when an angle of `settings` is not within 0..180 degrees; InputError (file
+/// empty, line 0) naming the part, a shell and an edge when a sheet is not orientable;
+/// std::invalid_argument when a precondition on the model does not hold (naming the shell and
+/// node).
+std::vector<Sheet> buildSheets(const FeModel& model, Id part, const SheetSettings& settings = {});
+
+/// Builds the sheets of every part with shells: the model's parts in their order, then parts that
+/// shells name but the model does not define, by ascending ID; within a part as buildSheets.
+/// Parts are processed in parallel; the result does not depend on the number of threads.
+/// @param model     the model; preconditions as for buildSheets
+/// @param settings  feature and corner thresholds
+/// Throws as buildSheets; when several parts fail, the error of the first failing part in the
+/// output order is thrown.
+std::vector<Sheet> buildAllSheets(const FeModel& model, const SheetSettings& settings = {});
 
 }  // namespace voxremesh

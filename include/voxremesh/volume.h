@@ -1,0 +1,213 @@
+// The volume stage: the sheets of one part written into a narrow-band signed-distance grid plus
+// two masks (invalid voxels near free boundaries, cells crossed by feature curves), all on one
+// uniform transform, and the curves extraction must keep. Grids are OpenVDB grids; this header
+// keeps them behind a handle so that users of the stage need no OpenVDB headers (the stages that
+// work on the grids include src/volume/volume_grids.h).
+//
+// Conventions
+// - Index space: voxel (i,j,k) is the sample at world position (i,j,k) * voxelSize (the transform
+//   is a uniform scale, no offset).
+// - sdf: FloatGrid, class level set, background = band * voxelSize. Active voxels are exactly those
+//   whose distance to the sheets is below the band; value = s * d, d the exact distance to the
+//   closest point of the closest sheet (quads split into triangles 0-1-2 and 0-2-3), s the side
+//   of that closest point after orientation (+1 on the side the face normals point to).
+//   Inactive values are +-background by that side.
+// - invalid: MaskGrid of voxels (samples) whose closest point lies on a free boundary edge or
+//   boundary vertex while the distance vector leans more than invalidAngleDeg away from the face
+//   normal there (Bidmon et al., Sect. 3). No surface may be extracted from a cell touching one.
+// - feature: MaskGrid of CELLS: the value at (i,j,k) stands for the cube [i,i+1]x[j,j+1]x[k,k+1]
+//   in index space, the marching-cubes cell whose lowest corner is voxel (i,j,k). A cell is marked
+//   when a feature line segment or a feature point touches it (closed cube, so a segment running
+//   along a cell face or edge marks every cell sharing it).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "voxremesh/fe_model.h"
+#include "voxremesh/sheets.h"
+
+namespace voxremesh {
+
+/// How the voxel size is chosen (see VolumeSettings).
+enum class VoxelSizeRule {
+  Explicit,           ///< VolumeSettings::voxelSize as given
+  TargetElementSize,  ///< voxel size = target element size (the default route)
+  MinEdgeLength,      ///< voxel size = minEdgeFactor x the shortest element edge of the input
+};
+
+/// Settings of the volume stage. Every field has a documented default.
+struct VolumeSettings {
+  VoxelSizeRule rule = VoxelSizeRule::TargetElementSize;
+  /// Voxel size in model units for VoxelSizeRule::Explicit. Must be finite and > 0.
+  double voxelSize = 0.0;
+  /// Target element size of the new mesh for VoxelSizeRule::TargetElementSize; 0 (the default)
+  /// means the mean element edge length of the input sheets. Negative or NaN is refused.
+  double targetElementSize = 0.0;
+  /// Voxel size per shortest edge for VoxelSizeRule::MinEdgeLength, in (0, 100].
+  double minEdgeFactor = 1.0;
+  /// Narrow band half width in voxels, >= 1 and <= 64: voxels farther than band x voxelSize from
+  /// every sheet are inactive.
+  double bandWidthVoxels = 3.0;
+  /// A voxel whose closest point is on a free boundary is invalid when the angle between its
+  /// distance vector and the face normal there exceeds this, in degrees, in [0, 90].
+  /// Default 60: a cell beyond the boundary in which the sdf changes sign always has a corner at
+  /// an angle of at least atan(2) = 63.4 deg (its far corner is >= 1 voxel out and <= 1/2 voxel
+  /// off the plane), so every such cell touches an invalid voxel and the dual mesh stops short of
+  /// the free boundary; above the sheet's inside the angle is 0 and nothing is invalid.
+  double invalidAngleDeg = 60.0;
+  /// Ties between an element interior and its edge or vertex: when the distance vector's part
+  /// tangential to the face is at most this many voxels, the closest point counts as the face's
+  /// interior (the element wins). In [0, 0.01].
+  double tieToleranceVoxels = 1e-4;
+  /// Refuse settings whose estimated peak memory exceeds this many bytes; 0 (the default) means
+  /// half of the physical memory of this machine.
+  std::uint64_t memoryLimitBytes = 0;
+};
+
+/// Where a volume came from, written into the .vdb metadata.
+struct VolumeSource {
+  std::string sourceFile;  ///< the deck the sheets were built from (may be empty)
+};
+
+/// The parameters a Volume was built with (also read back from a .vdb file).
+struct VolumeInfo {
+  double voxelSize = 0.0;
+  double bandWidthVoxels = 0.0;
+  double invalidAngleDeg = 0.0;
+  double tieToleranceVoxels = 0.0;
+  std::string sourceFile;
+  Id part = 0;
+  std::string toolVersion;  ///< the voxremesh version that built the grids
+};
+
+/// A curve kept for extraction, in world coordinates; closed curves do not repeat their first
+/// point.
+struct VolumeCurve {
+  std::vector<std::array<double, 3>> points;
+  bool closed = false;
+};
+
+/// The volume of one part: the grids (behind a handle) plus the curves of its sheets.
+class Volume {
+ public:
+  struct Impl;  ///< defined in src/volume/volume_grids.h
+
+  /// An empty volume (no grids); use buildVolume or readVolume to get one with content.
+  Volume();
+  ~Volume();
+  Volume(Volume&&) noexcept;
+  Volume& operator=(Volume&&) noexcept;
+  /// Deep copy of grids and curves.
+  Volume(const Volume& other);
+  Volume& operator=(const Volume& other);
+
+  /// True until grids have been built or read.
+  bool empty() const;
+  /// The build parameters and provenance.
+  const VolumeInfo& info() const;
+  /// Feature lines of all sheets (world space).
+  const std::vector<VolumeCurve>& featureLines() const;
+  /// Boundary loops of all sheets (world space), for rebuilding the boundary strip.
+  const std::vector<VolumeCurve>& boundaryLoops() const;
+  /// Feature points of all sheets (world space).
+  const std::vector<std::array<double, 3>>& featurePoints() const;
+
+  /// Internal access for the stages that work on the grids (src/volume/volume_grids.h).
+  Impl& impl() { return *impl_; }
+  const Impl& impl() const { return *impl_; }
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Returns the voxel size the settings ask for on these sheets.
+/// Explicit: settings.voxelSize; TargetElementSize: settings.targetElementSize, or the mean edge
+/// length of the sheets when that is 0; MinEdgeLength: minEdgeFactor x the shortest edge (edges
+/// shorter than 1e-9 of the sheets' bounding box diagonal are ignored as degenerate).
+/// Throws SettingError for a zero, negative, NaN or infinite size or factor, or when the rule
+/// needs edges and the sheets have none.
+double chooseVoxelSize(const std::vector<Sheet>& sheets, const VolumeSettings& settings);
+
+/// What a volume of these sheets at this voxel size will need, estimated before allocating.
+struct VolumeEstimate {
+  double surfaceArea = 0.0;        ///< total area of the sheets (model units squared)
+  double activeVoxels = 0.0;       ///< area / voxel^2 x (2 band + 1)
+  double peakBytes = 0.0;          ///< activeVoxels x bytes per voxel while building
+  std::uint64_t memoryLimit = 0;   ///< the limit the estimate is checked against
+  double smallestVoxelSize = 0.0;  ///< the smallest voxel size that fits the limit
+};
+
+/// Estimates the active voxels and the peak memory of buildVolume for these sheets.
+/// Preconditions: voxelSize finite and > 0; settings valid (see checkVolumeSettings).
+VolumeEstimate estimateVolume(const std::vector<Sheet>& sheets, double voxelSize,
+                              const VolumeSettings& settings);
+
+/// Checks the settings that do not depend on the sheets (band, angle, tolerance, factors).
+/// Throws SettingError naming the setting, its value and the allowed range.
+void checkVolumeSettings(const VolumeSettings& settings);
+
+/// Writes the sheets of one part into a volume: the signed distance grid, the invalid and
+/// feature masks, and the sheets' feature lines, feature points and boundary loops.
+/// Several sheets are united: per voxel the closest sheet wins (exact ties: the lower sheet
+/// index, then the lower face index). The result does not depend on the number of threads.
+/// Parameters: sheets - manifold, consistently oriented sheets of ONE part; settings - see
+/// VolumeSettings; source - provenance for the metadata.
+/// Throws SettingError for invalid settings or when the estimated memory exceeds the limit
+/// (the message gives the voxel count and the smallest voxel size that fits);
+/// std::invalid_argument when sheets are of different parts, a face refers to a missing point,
+/// or a coordinate is not finite.
+Volume buildVolume(const std::vector<Sheet>& sheets, const VolumeSettings& settings,
+                   const VolumeSource& source = {});
+
+/// Writes the volume to a .vdb file with grids "sdf", "invalid" and "feature" and voxremesh
+/// metadata (voxel size, band, thresholds, source file, part ID, tool version, curves). The file
+/// appears complete or not at all. Throws std::invalid_argument for an empty volume and
+/// std::runtime_error naming the path when it cannot be written.
+void writeVolume(const Volume& volume, const std::filesystem::path& path);
+
+/// Reads a volume written by writeVolume. Throws InputError naming the file when it cannot be
+/// read as a .vdb file, lacks one of the grids sdf (float), invalid and feature (mask), or the
+/// grids do not share one uniform transform.
+Volume readVolume(const std::filesystem::path& path);
+
+/// One grid in a VolumeReport.
+struct GridReport {
+  std::string name;
+  std::string gridClass;  ///< "level set", "unknown", ...
+  std::string valueType;  ///< "float", "mask", ...
+  std::uint64_t activeVoxels = 0;
+  std::uint64_t leafNodes = 0;
+  std::uint64_t memoryBytes = 0;
+  bool emptyBounds = true;  ///< no active voxels: the bounding boxes below are meaningless
+  std::array<std::int32_t, 3> indexMin{}, indexMax{};
+  std::array<double, 3> worldMin{}, worldMax{};
+  bool hasValueRange = false;             ///< false for masks
+  double minValue = 0.0, maxValue = 0.0;  ///< over active voxels
+};
+
+/// What `voxremesh inspect` shows about a volume.
+struct VolumeReport {
+  VolumeInfo info;
+  std::vector<GridReport> grids;  ///< sdf, invalid, feature
+  std::uint64_t invalidVoxels = 0;
+  std::uint64_t featureVoxels = 0;
+  std::size_t featureLines = 0;
+  std::size_t featurePoints = 0;
+  std::size_t boundaryLoops = 0;
+};
+
+/// Inspects the grids of a volume. Throws std::invalid_argument for an empty volume.
+VolumeReport inspectVolume(const Volume& volume);
+
+/// Renders a report as an aligned text table.
+std::string formatVolumeReport(const VolumeReport& report);
+
+/// Renders a report as one JSON object.
+std::string volumeReportJson(const VolumeReport& report);
+
+}  // namespace voxremesh

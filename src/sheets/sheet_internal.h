@@ -1,0 +1,137 @@
+// Internal steps of buildSheets (include/voxremesh/sheets.h), one file each:
+//   sheet_model.cpp        what is computed once per model (corners, parts, nodes shared by parts)
+//   sheet_orientation.cpp  components across manifold edges and their consistent orientation
+//   sheet_splitting.cpp    the sheets' faces and points (joining or cutting at non-manifold edges)
+//   sheet_boundary.cpp     boundary loops
+//   sheet_features.cpp     feature lines and feature points
+//   sheet_junctions.cpp    junction curves
+//   sheet_polylines.cpp    chaining sheet edges into polylines (features, junctions)
+//   build_sheets.cpp       the public functions
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "model/shell_edges.h"
+#include "voxremesh/fe_model.h"
+#include "voxremesh/sheets.h"
+
+namespace voxremesh::sheets {
+
+using model::Index;
+using model::kNoIndex;
+using model::ShellCorners;
+using model::ShellEdges;
+
+using Vec3 = std::array<double, 3>;
+
+/// The normal of a face with `count` corners at p[0..count-1], not normalised: (p1 - p0) x
+/// (p2 - p0) for a triangle, the cross product of the diagonals (p2 - p0) x (p3 - p1) for a quad.
+inline Vec3 faceNormal(const std::array<Vec3, 4>& p, unsigned count) {
+  const Vec3 u = count == 3 ? Vec3{p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]}
+                            : Vec3{p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+  const Vec3 v = count == 3 ? Vec3{p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]}
+                            : Vec3{p[3][0] - p[1][0], p[3][1] - p[1][1], p[3][2] - p[1][2]};
+  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+}
+
+/// The angle between two vectors in degrees (0..180); 0 when either is zero or not finite.
+inline double angleDeg(const Vec3& a, const Vec3& b) {
+  const double cross =
+      std::hypot(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]);
+  const double dot = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  if (!(cross > 0.0 || dot > 0.0 || dot < 0.0)) return 0.0;  // a zero vector, or NaN
+  const double angle = std::atan2(cross, dot) * (180.0 / 3.14159265358979323846);
+  return std::isfinite(angle) ? angle : 0.0;
+}
+
+/// What buildSheets needs of the whole model, computed once.
+struct ModelContext {
+  const FeModel& model;
+  std::vector<ShellCorners> corners;  ///< per model shell: node indices as the model lists them
+  std::vector<Id> partIds;            ///< parts with shells, in output order
+  std::vector<std::vector<Index>> partShells;  ///< per entry of partIds: model shell indices
+  /// Nodes used by shells of several parts: the part entries (indices into partIds, ascending) of
+  /// node v are sharedParts[sharedBegin[v] .. sharedBegin[v + 1]); empty for other nodes. Both
+  /// vectors are empty when no node is shared.
+  std::vector<Index> sharedBegin;
+  std::vector<Index> sharedParts;
+
+  /// Nodes u and v (model node indices) are both used by shells of one part entry other than
+  /// `part`.
+  bool sharedWithOtherPart(Index u, Index v, Index part) const;
+};
+
+/// Builds the context of `model`. Throws std::invalid_argument as model::shellCorners does.
+ModelContext makeModelContext(const FeModel& model);
+
+/// The faces of one part: the shells with a surface, with part-local node numbers and adjacency.
+struct PartMesh {
+  Id part = 0;
+  Index partEntry = 0;                ///< index into ModelContext::partIds
+  std::string label;                  ///< "part 7" or "part 7 (name)", for messages
+  std::vector<Index> shells;          ///< per position: the model shell index (ascending)
+  std::vector<Index> nodes;           ///< per local node: the model node index
+  std::vector<ShellCorners> corners;  ///< per position: distinct local node indices, model order
+  ShellEdges edges;                   ///< adjacency of `corners`, all positions
+};
+
+/// Collects the faces of part entry `partEntry` (see the definitions in sheets.h: shells without
+/// a surface are left out; repeated neighbouring corners are dropped).
+/// @param localOf scratch: one entry per model node, all kNoIndex; left so on return
+PartMesh makePartMesh(const ModelContext& context, Index partEntry, std::vector<Index>& localOf);
+
+/// The consistent orientation of the components of a part.
+struct Orientation {
+  std::vector<Index> component;       ///< per position: its component, numbered by first position
+  std::vector<std::uint8_t> flipped;  ///< per position: 1 where the face's corners are reversed
+  Index componentCount = 0;
+};
+
+/// Splits the faces into components across manifold edges and orients each consistently, keeping
+/// the majority orientation. Throws InputError naming the part, a shell and an edge when a
+/// component is not orientable.
+Orientation orientComponents(const FeModel& model, const PartMesh& part);
+
+/// One sheet with the topology its curves are found from.
+struct SheetDraft {
+  Sheet sheet;
+  std::vector<Index> positions;       ///< per face: its position in the part
+  std::vector<ShellCorners> corners;  ///< per face: point indices in the sheet's orientation
+  ShellEdges edges;                   ///< adjacency of `corners`
+  std::vector<Index> partEdge;        ///< per sheet edge: the edge of the part it lies on
+};
+
+/// Builds the sheets of a part: faces, points, shell IDs and flips; non-manifold edges joined or
+/// cut (see sheets.h). Curves are left empty.
+std::vector<SheetDraft> splitSheets(const ModelContext& context, const PartMesh& part,
+                                    const Orientation& orientation);
+
+/// Fills draft.sheet.boundaryLoops.
+void findBoundaryLoops(SheetDraft& draft);
+
+/// Fills draft.sheet.featureLines and draft.sheet.featurePoints (boundary loops must be filled).
+/// Preconditions: the angles of `settings` are valid (checked by the public functions).
+void findFeatures(SheetDraft& draft, const SheetSettings& settings);
+
+/// Fills draft.sheet.junctionCurves.
+void findJunctions(SheetDraft& draft, const ModelContext& context, const PartMesh& part);
+
+/// Chains the sheet edges `chosen` (ascending sheet edge indices of `edges`) into polylines that
+/// stop at points where a chosen edge ends or branches and at points with stop[p] != 0 (stop may
+/// be empty). Open polylines come first, walked from their stops in ascending point order (the
+/// edges at a stop in ascending order); then closed ones, each starting at the lower point of its
+/// lowest edge and walking along that edge.
+std::vector<Polyline> chainEdges(const ShellEdges& edges, const std::vector<Index>& chosen,
+                                 std::size_t pointCount, const std::vector<std::uint8_t>& stop);
+
+/// The points of `polylines` where the polyline turns by more than `cornerAngleDeg` (every point
+/// of a closed polyline, the inner points of an open one), appended to `result` (unsorted).
+void appendCorners(const std::vector<Polyline>& polylines,
+                   const std::vector<std::array<double, 3>>& points, double cornerAngleDeg,
+                   std::vector<PointIndex>& result);
+
+}  // namespace voxremesh::sheets

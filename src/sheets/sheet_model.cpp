@@ -1,0 +1,147 @@
+// What buildSheets computes once per model (corners, the parts in output order, the nodes that
+// several parts share) and the faces of one part.
+#include <algorithm>
+#include <unordered_map>
+#include <utility>
+
+#include "sheets/sheet_internal.h"
+
+namespace voxremesh::sheets {
+
+bool ModelContext::sharedWithOtherPart(Index u, Index v, Index part) const {
+  if (sharedBegin.empty()) return false;
+  const Index* a = sharedParts.data() + sharedBegin[u];
+  const Index* aEnd = sharedParts.data() + sharedBegin[u + 1];
+  const Index* b = sharedParts.data() + sharedBegin[v];
+  const Index* bEnd = sharedParts.data() + sharedBegin[v + 1];
+  while (a != aEnd && b != bEnd) {
+    if (*a < *b) {
+      ++a;
+    } else if (*b < *a) {
+      ++b;
+    } else {
+      if (*a != part) return true;
+      ++a;
+      ++b;
+    }
+  }
+  return false;
+}
+
+ModelContext makeModelContext(const FeModel& model) {
+  ModelContext context{model, model::shellCorners(model), {}, {}, {}, {}};
+
+  // Entries: the model's parts in order, then undefined parts named by shells, ascending; parts
+  // without shells are dropped afterwards.
+  std::unordered_map<Id, Index> entryOf;
+  std::vector<Id> ids;
+  for (const Part& part : model.parts)
+    if (entryOf.emplace(part.id, Index(ids.size())).second) ids.push_back(part.id);
+  std::vector<Id> undefined;
+  for (const Shell& shell : model.shells)
+    if (entryOf.find(shell.part) == entryOf.end()) {
+      entryOf.emplace(shell.part, kNoIndex);
+      undefined.push_back(shell.part);
+    }
+  std::sort(undefined.begin(), undefined.end());
+  for (const Id id : undefined) {
+    entryOf[id] = Index(ids.size());
+    ids.push_back(id);
+  }
+  std::vector<std::vector<Index>> shells(ids.size());
+  std::vector<Index> entryOfShell(model.shells.size());
+  Id lastPart = 0;
+  Index lastEntry = 0;
+  for (std::size_t s = 0; s < model.shells.size(); ++s) {
+    if (s == 0 || model.shells[s].part != lastPart) {
+      lastPart = model.shells[s].part;
+      lastEntry = entryOf[lastPart];
+    }
+    shells[lastEntry].push_back(Index(s));
+    entryOfShell[s] = lastEntry;
+  }
+  std::vector<Index> compact(ids.size(), kNoIndex);
+  for (std::size_t e = 0; e < ids.size(); ++e) {
+    if (shells[e].empty()) continue;
+    compact[e] = Index(context.partIds.size());
+    context.partIds.push_back(ids[e]);
+    context.partShells.push_back(std::move(shells[e]));
+  }
+  for (Index& entry : entryOfShell) entry = compact[entry];
+
+  // Nodes used by several parts: first mark them, then list their parts.
+  std::vector<Index> firstEntry(model.nodes.size(), kNoIndex);
+  std::vector<std::uint8_t> shared(model.nodes.size(), 0);
+  bool anyShared = false;
+  for (std::size_t s = 0; s < model.shells.size(); ++s) {
+    const ShellCorners& c = context.corners[s];
+    for (unsigned k = 0; k < c.count; ++k) {
+      Index& first = firstEntry[c.node[k]];
+      if (first == kNoIndex) {
+        first = entryOfShell[s];
+      } else if (first != entryOfShell[s]) {
+        shared[c.node[k]] = 1;
+        anyShared = true;
+      }
+    }
+  }
+  if (!anyShared) return context;
+  std::vector<std::pair<Index, Index>> pairs;  // (node, entry)
+  for (std::size_t s = 0; s < model.shells.size(); ++s) {
+    const ShellCorners& c = context.corners[s];
+    for (unsigned k = 0; k < c.count; ++k)
+      if (shared[c.node[k]]) pairs.emplace_back(c.node[k], entryOfShell[s]);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  context.sharedBegin.assign(model.nodes.size() + 1, 0);
+  for (const auto& pair : pairs) ++context.sharedBegin[pair.first + 1];
+  for (std::size_t v = 0; v < model.nodes.size(); ++v)
+    context.sharedBegin[v + 1] += context.sharedBegin[v];
+  context.sharedParts.reserve(pairs.size());
+  for (const auto& pair : pairs) context.sharedParts.push_back(pair.second);
+  return context;
+}
+
+PartMesh makePartMesh(const ModelContext& context, Index partEntry, std::vector<Index>& localOf) {
+  const FeModel& model = context.model;
+  PartMesh part;
+  part.partEntry = partEntry;
+  part.part = context.partIds[partEntry];
+  part.label = "part " + std::to_string(part.part);
+  if (const Part* defined = model.findPart(part.part); defined && !defined->name.empty())
+    part.label += " (" + defined->name + ")";
+
+  const std::vector<Index>& shells = context.partShells[partEntry];
+  part.shells.reserve(shells.size());
+  part.corners.reserve(shells.size());
+  for (const Index s : shells) {
+    const ShellCorners& given = context.corners[s];
+    // Drop a corner equal to the one before it, cyclically.
+    ShellCorners c;
+    c.count = 0;
+    for (unsigned k = 0; k < given.count; ++k)
+      if (c.count == 0 || c.node[c.count - 1] != given.node[k]) c.node[c.count++] = given.node[k];
+    while (c.count > 1 && c.node[c.count - 1] == c.node[0]) --c.count;
+    if (c.count < 3) continue;
+    bool repeats = false;
+    for (unsigned i = 0; i < c.count; ++i)
+      for (unsigned j = i + 1; j < c.count; ++j) repeats = repeats || c.node[i] == c.node[j];
+    if (repeats) continue;
+    for (unsigned k = 0; k < c.count; ++k) {
+      Index& local = localOf[c.node[k]];
+      if (local == kNoIndex) {
+        local = Index(part.nodes.size());
+        part.nodes.push_back(c.node[k]);
+      }
+      c.node[k] = local;
+    }
+    part.shells.push_back(s);
+    part.corners.push_back(c);
+  }
+  for (const Index v : part.nodes) localOf[v] = kNoIndex;
+  part.edges = ShellEdges(part.corners);
+  return part;
+}
+
+}  // namespace voxremesh::sheets
