@@ -42,9 +42,11 @@ Axis axisFromName(const std::string& name);
 /// An 8-bit RGB colour.
 struct Rgb {
   std::uint8_t r = 0, g = 0, b = 0;
+  /// Component-wise equality.
   friend bool operator==(const Rgb& a, const Rgb& b) {
     return a.r == b.r && a.g == b.g && a.b == b.b;
   }
+  /// Component-wise inequality.
   friend bool operator!=(const Rgb& a, const Rgb& b) { return !(a == b); }
 };
 
