@@ -91,12 +91,11 @@ struct SliceImage {
 
 /// The world-coordinate range [first, second] along `axis` in which renderSlice accepts `at`: the
 /// index-space bounding box of the active voxels of the three grids, times the voxel size.
-/// Throws std::invalid_argument for an empty volume; SettingError when no grid has an active
-/// voxel.
+/// Throws std::invalid_argument for an empty volume or one without any active voxel.
 std::array<double, 2> sliceRange(const Volume& volume, Axis axis);
 
 /// Colour of a signed distance in the diverging map of `style`: linear from `zero` at 0 to
-/// `negative` at -saturation and `positive` at +saturation, constant beyond.
+/// `negative` at -saturation and `positive` at +saturation, constant beyond; NaN gives `zero`.
 /// Precondition: saturation > 0.
 Rgb distanceColour(double distance, double saturation, const SliceStyle& style);
 
@@ -104,12 +103,13 @@ Rgb distanceColour(double distance, double saturation, const SliceStyle& style);
 /// comment for geometry and colours).
 /// @param volume  a built or read volume
 /// @param axis    the axis the slice is normal to
-/// @param at      world coordinate along axis; the nearest voxel layer is drawn
+/// @param at      world coordinate along axis, within sliceRange or up to half a voxel beyond
+///                it; the nearest voxel layer is drawn
 /// @param style   scale and colours
-/// Throws std::invalid_argument for an empty volume; SettingError when `at` is not finite or
-/// lies outside sliceRange (the message names the valid range), when the volume has no active
-/// voxel, when pixelsPerVoxel is outside [0, 64], or when the image would exceed maxPixels (the
-/// message names the size and a scale that fits).
+/// Throws std::invalid_argument for an empty volume or one without any active voxel;
+/// SettingError when `at` is not finite or lies outside that range (the message names
+/// sliceRange), when pixelsPerVoxel is outside [0, 64], or when the image would exceed
+/// maxPixels or 2^31 - 1 pixels a side (the message names the size and a scale that fits).
 SliceImage renderSlice(const Volume& volume, Axis axis, double at, const SliceStyle& style = {});
 
 /// Encodes an image as a PNG file's bytes: 8-bit RGB, not interlaced, zlib-compressed rows with
