@@ -6,6 +6,9 @@ find_package(TBB REQUIRED)
 list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB /usr/lib/cmake/OpenVDB)
 find_package(OpenVDB REQUIRED)
 
+# zlib (a dependency of OpenVDB anyway) compresses the PNG images of `voxremesh slice`.
+find_package(ZLIB REQUIRED)
+
 find_package(OpenMesh REQUIRED)
 if(NOT TARGET OpenMeshCore)
   message(FATAL_ERROR "OpenMesh was found but defines no OpenMeshCore target")

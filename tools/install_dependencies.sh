@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   g++ cmake make ccache
-  libopenvdb-dev libboost-iostreams-dev libtbb-dev libopenmesh-dev libgtest-dev
+  libopenvdb-dev libboost-iostreams-dev libtbb-dev libopenmesh-dev libgtest-dev zlib1g-dev
   libopenvdb-tools
 )
 

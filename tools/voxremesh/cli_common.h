@@ -27,6 +27,12 @@ using CommandFunction = int (*)(const std::vector<std::string>& args);
 int runInfo(const std::vector<std::string>& args);
 /// `voxremesh convert` (cli_convert.cpp).
 int runConvert(const std::vector<std::string>& args);
+/// `voxremesh voxelize` (cli_voxelize.cpp).
+int runVoxelize(const std::vector<std::string>& args);
+/// `voxremesh inspect` (cli_inspect.cpp).
+int runInspect(const std::vector<std::string>& args);
+/// `voxremesh slice` (cli_slice.cpp).
+int runSlice(const std::vector<std::string>& args);
 
 /// A malformed command line (unknown option, missing argument, ...): main prints the message and
 /// the command's usage line on stderr and exits with 2.
@@ -123,6 +129,17 @@ inline double parseNumber(const std::string& option, const std::string& text) {
   const double value = std::strtod(text.c_str(), &end);
   if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(value))
     throw SettingError(option + " expects a number, not '" + text + "'");
+  return value;
+}
+
+/// Parses the value of an integer option (a part ID, a pixel count). Throws SettingError naming
+/// the option when `text` is not a whole number within the range of a 64-bit integer.
+inline long long parseInteger(const std::string& option, const std::string& text) {
+  errno = 0;
+  char* end = nullptr;
+  const long long value = std::strtoll(text.c_str(), &end, 10);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE)
+    throw SettingError(option + " expects a whole number, not '" + text + "'");
   return value;
 }
 

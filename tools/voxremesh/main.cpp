@@ -21,6 +21,12 @@ struct Command {
 constexpr Command kCommands[] = {
     {"info", "mesh report per part: counts, sizes, topology checks", voxremesh::cli::runInfo},
     {"convert", "convert between deck and mesh formats", voxremesh::cli::runConvert},
+    {"voxelize", "write one part into a narrow-band signed-distance .vdb volume",
+     voxremesh::cli::runVoxelize},
+    {"inspect", "report the grids of a .vdb volume: counts, bounds, values, settings",
+     voxremesh::cli::runInspect},
+    {"slice", "render one axis-aligned slice of a .vdb volume as a PNG image",
+     voxremesh::cli::runSlice},
 };
 
 const char* const kUsage = "voxremesh COMMAND [options]  (see voxremesh --help)";

@@ -1,0 +1,363 @@
+// The volume commands of the voxremesh command line, run as a subprocess: voxelize, inspect and
+// slice on the shipped sample part and the real decks, and their answers to bad input.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "support/json.h"
+#include "support/png.h"
+#include "support/test_support.h"
+
+namespace fs = std::filesystem;
+using voxremesh::test::Json;
+using voxremesh::test::parseJson;
+using voxremesh::test::readText;
+using voxremesh::test::runCli;
+using voxremesh::test::scratchDir;
+using voxremesh::test::writeText;
+
+namespace {
+
+// A run with stdout and stderr kept apart.
+struct CliRun {
+  int exitCode = -1;
+  std::string out;
+  std::string err;
+};
+
+CliRun run(const std::string& args) {
+  const fs::path dir = scratchDir("cli-volume-run");
+  const fs::path out = dir / "stdout", err = dir / "stderr";
+  // runCli appends "2>&1"; after "; exit $?" it applies to the exit only.
+  const auto result = runCli(args + " >'" + out.string() + "' 2>'" + err.string() + "'; exit $?");
+  return {result.exitCode, readText(out), readText(err)};
+}
+
+std::string quoted(const fs::path& path) {
+  return "'" + path.string() + "'";
+}
+
+fs::path samplePart() {
+  return fs::path(VOXREMESH_SOURCE_DIR) / "tools" / "samples" / "hat_rail.k";
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// The default slice colours (slice_image.h, `voxremesh help slice`).
+using Colour = std::array<std::uint8_t, 3>;
+constexpr Colour kInvalid{255, 210, 0}, kFeature{0, 0, 0}, kInactive{128, 128, 128};
+
+// How many pixels have the colour; and how many are bluish (b > r) or reddish (r > b) besides.
+struct ColourCount {
+  int matching = 0, bluish = 0, reddish = 0;
+};
+
+ColourCount countColour(const voxremesh::test::DecodedPng& png, const Colour& colour) {
+  ColourCount count;
+  for (std::size_t i = 0; i + 2 < png.rgb.size(); i += 3) {
+    const Colour c{png.rgb[i], png.rgb[i + 1], png.rgb[i + 2]};
+    count.matching += c == colour ? 1 : 0;
+    if (c == kInvalid || c == kFeature || c == kInactive) continue;
+    count.bluish += c[2] > c[0] ? 1 : 0;
+    count.reddish += c[0] > c[2] ? 1 : 0;
+  }
+  return count;
+}
+
+// Voxelizes the sample part once per test process at --size 5 into a scratch folder.
+const fs::path& sampleVolume() {
+  static const fs::path path = [] {
+    const fs::path dir = scratchDir("cli-volume-sample");
+    const fs::path vdb = dir / "rail.vdb";
+    const CliRun r = run("voxelize " + quoted(samplePart()) + " -o " + quoted(vdb) + " --size 5");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    return vdb;
+  }();
+  return path;
+}
+
+Json inspectJson(const fs::path& vdb) {
+  const CliRun r = run("inspect " + quoted(vdb) + " --json");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  return parseJson(r.out);
+}
+
+/// Output of a shell command (stdout and stderr) and its exit code.
+voxremesh::test::CliResult runShell(const std::string& command) {
+  voxremesh::test::CliResult result;
+  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return result;
+  char buffer[4096];
+  std::size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) result.output.append(buffer, n);
+  const int status = ::pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+}  // namespace
+
+TEST(CliVolume, HelpListsAndDocumentsTheCommands) {
+  const CliRun help = run("--help");
+  ASSERT_EQ(help.exitCode, 0);
+  for (const char* command : {"voxelize", "inspect", "slice"})
+    EXPECT_TRUE(contains(help.out, command)) << command;
+  const CliRun voxelize = run("help voxelize");
+  EXPECT_EQ(voxelize.exitCode, 0);
+  for (const char* option : {"-o PART.vdb", "--size H", "--voxel V", "--part PID", "--band N",
+                             "--feature-angle DEG", "--invalid-angle DEG", "--format F"})
+    EXPECT_TRUE(contains(voxelize.out, option)) << option << "\n" << voxelize.out;
+  const CliRun slice = run("slice --help");
+  EXPECT_EQ(slice.exitCode, 0);
+  for (const char* colour : {"blue", "white", "red", "grey", "yellow", "black"})
+    EXPECT_TRUE(contains(slice.out, colour)) << colour << "\n" << slice.out;
+  EXPECT_TRUE(contains(run("help inspect").out, "--json"));
+}
+
+TEST(CliVolume, VoxelizeWritesTheThreeGrids) {
+  const fs::path dir = scratchDir("cli-volume-voxelize");
+  const fs::path vdb = dir / "rail.vdb";
+  const CliRun r = run("voxelize " + quoted(samplePart()) + " -o " + quoted(vdb) + " --size 5");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  EXPECT_EQ(
+      r.out.rfind("wrote " + vdb.string() + ": part 100 (Hat rail), 1 sheet, voxel size 5, ", 0),
+      0u)
+      << r.out;
+  for (const char* what : {" active voxels, ", " invalid voxels, ", " feature cells, ", " s\n"})
+    EXPECT_TRUE(contains(r.out, what)) << what << "\n" << r.out;
+  ASSERT_TRUE(fs::is_regular_file(vdb));
+  // The summary's counts are the file's.
+  const Json report = inspectJson(vdb);
+  const std::string active = report["grids"].items.at(0)["active_voxels"].text;
+  EXPECT_TRUE(contains(r.out, "voxel size 5, " + active + " active voxels, " +
+                                  report["invalid_voxels"].text + " invalid voxels, " +
+                                  report["feature_cells"].text + " feature cells"))
+      << r.out;
+
+  if (!fs::exists("/usr/bin/vdb_print")) GTEST_SKIP() << "/usr/bin/vdb_print not installed";
+  const auto print = runShell("/usr/bin/vdb_print " + quoted(vdb));
+  ASSERT_EQ(print.exitCode, 0) << print.output;
+  for (const char* grid : {"sdf ", "invalid ", "feature "}) {
+    bool listed = false;
+    for (std::size_t at = 0; at < print.output.size();) {
+      std::size_t end = print.output.find('\n', at);
+      if (end == std::string::npos) end = print.output.size();
+      listed = listed || print.output.compare(at, std::string(grid).size(), grid) == 0;
+      at = end + 1;
+    }
+    EXPECT_TRUE(listed) << grid << "\n" << print.output;
+  }
+}
+
+TEST(CliVolume, InspectReportsTheGrids) {
+  const Json report = inspectJson(sampleVolume());
+  EXPECT_EQ(report["part"].number, 100);
+  EXPECT_EQ(report["voxel_size"].number, 5);
+  EXPECT_EQ(report["band_voxels"].number, 3);
+  EXPECT_TRUE(contains(report["source_file"].text, "hat_rail.k"));
+  const Json& grids = report["grids"];
+  ASSERT_EQ(grids.items.size(), 3u);
+  EXPECT_EQ(grids.items[0]["name"].text, "sdf");
+  EXPECT_EQ(grids.items[0]["class"].text, "level set");
+  EXPECT_GT(grids.items[0]["active_voxels"].number, 0);
+  EXPECT_EQ(grids.items[1]["name"].text, "invalid");
+  EXPECT_EQ(grids.items[2]["name"].text, "feature");
+  // The rail has free flange edges, rail ends and holes (invalid voxels) and bends (features).
+  EXPECT_GT(report["invalid_voxels"].number, 0);
+  EXPECT_GT(report["feature_cells"].number, 0);
+  // The band around a rail of 400 x 150 x 45: -10 .. 410 along x at voxel size 5 and band 3.
+  const Json& box = grids.items[0]["world_bbox"];
+  EXPECT_EQ(box.items.at(0).items.at(0).number, -10);
+  EXPECT_EQ(box.items.at(1).items.at(0).number, 410);
+
+  const CliRun table = run("inspect " + quoted(sampleVolume()));
+  ASSERT_EQ(table.exitCode, 0) << table.err;
+  EXPECT_EQ(table.out.rfind(sampleVolume().string() + "\n\nvolume of part 100", 0), 0u)
+      << table.out;
+  for (const char* what : {"sdf ", "invalid ", "feature ", "level set", "invalid voxels "})
+    EXPECT_TRUE(contains(table.out, what)) << what << "\n" << table.out;
+}
+
+TEST(CliVolume, SliceWritesAPngOfTheSection) {
+  const Json report = inspectJson(sampleVolume());
+  const Json& world = report["grids"].items.at(0)["world_bbox"];
+  const double zMid =
+      (world.items.at(0).items.at(2).number + world.items.at(1).items.at(2).number) / 2;
+  const fs::path dir = scratchDir("cli-volume-slice");
+
+  // Across the walls: both sides of the sheet, invalid voxels beyond the rail's open ends.
+  const fs::path zPng = dir / "z.png";
+  const CliRun z = run("slice " + quoted(sampleVolume()) + " --axis z --at " +
+                       std::to_string(zMid) + " -o " + quoted(zPng));
+  ASSERT_EQ(z.exitCode, 0) << z.err;
+  const voxremesh::test::DecodedPng zImage = voxremesh::test::decodePng(readText(zPng));
+  EXPECT_TRUE(contains(z.out, "wrote " + zPng.string() + ": " + std::to_string(zImage.width) +
+                                  " x " + std::to_string(zImage.height) + " pixels, z = "))
+      << z.out;
+  EXPECT_TRUE(contains(zImage.text.at("Comment"), "slice z = ")) << zImage.text.at("Comment");
+  const ColourCount zColours = countColour(zImage, kInvalid);
+  EXPECT_GT(zColours.matching, 0);
+  EXPECT_GT(zColours.bluish, 0);
+  EXPECT_GT(zColours.reddish, 0);
+
+  // The rail's section at mid-length: feature markers at the bends, invalid beyond the flanges.
+  const fs::path xPng = dir / "x.png";
+  const CliRun x = run("slice " + quoted(sampleVolume()) + " --axis x --at 200 -o " + quoted(xPng) +
+                       " --scale 4");
+  ASSERT_EQ(x.exitCode, 0) << x.err;
+  EXPECT_TRUE(contains(x.out,
+                       "x = 200 (voxel layer 40), y -10 .. 160 left to right, z -10 .. "
+                       "55 bottom to top, 4 pixels per voxel"))
+      << x.out;
+  const voxremesh::test::DecodedPng xImage = voxremesh::test::decodePng(readText(xPng));
+  // y -10..160 and z -10..55 at voxel size 5: 35 x 14 voxels of 4 x 4 pixels.
+  EXPECT_EQ(xImage.width, 35u * 4);
+  EXPECT_EQ(xImage.height, 14u * 4);
+  EXPECT_GT(countColour(xImage, kFeature).matching, 0);
+  EXPECT_GT(countColour(xImage, kInvalid).matching, 0);
+  EXPECT_GT(countColour(xImage, kInactive).matching, 0);
+  // The flange at z = 0 ends at y = 0: the voxel y = -10, z = 0 beyond it is invalid. Its block
+  // is column 0, row (55 - 0) / 5 = 11 from the top.
+  const std::size_t at = (std::size_t(11 * 4 + 2) * xImage.width + 2) * 3;
+  EXPECT_EQ((Colour{xImage.rgb[at], xImage.rgb[at + 1], xImage.rgb[at + 2]}), kInvalid);
+}
+
+TEST(CliVolume, BadInputFailsWithoutOutput) {
+  const fs::path dir = scratchDir("cli-volume-bad");
+  const fs::path vdb = dir / "out.vdb";
+  const std::string deck = quoted(samplePart());
+
+  const CliRun missing = run("voxelize " + quoted(dir / "no-such.k") + " -o " + quoted(vdb));
+  EXPECT_EQ(missing.exitCode, 1);
+  EXPECT_EQ(missing.err.rfind("voxremesh: error: ", 0), 0u) << missing.err;
+  EXPECT_TRUE(contains(missing.err, (dir / "no-such.k").string())) << missing.err;
+
+  const CliRun negative = run("voxelize " + deck + " -o " + quoted(vdb) + " --voxel -1");
+  EXPECT_EQ(negative.exitCode, 1);
+  EXPECT_TRUE(contains(negative.err, "voxel size must be a finite number > 0 (got -1)"))
+      << negative.err;
+
+  // A voxel size the machine cannot hold is refused before anything is allocated.
+  const CliRun tiny = run("voxelize " + deck + " -o " + quoted(vdb) + " --voxel 0.0001");
+  EXPECT_EQ(tiny.exitCode, 1);
+  EXPECT_TRUE(contains(tiny.err, "more than the memory limit")) << tiny.err;
+  EXPECT_TRUE(contains(tiny.err, "choose a voxel size of at least")) << tiny.err;
+
+  const CliRun part = run("voxelize " + deck + " -o " + quoted(vdb) + " --part 999");
+  EXPECT_EQ(part.exitCode, 1);
+  EXPECT_TRUE(contains(part.err, "no part 999 in ")) << part.err;
+  EXPECT_TRUE(contains(part.err, "parts with shells: 100")) << part.err;
+
+  for (const std::string& bad : {std::string("--size nan"), std::string("--size -2"),
+                                 std::string("--band 0"), std::string("--invalid-angle 95"),
+                                 std::string("--feature-angle 200"), std::string("--part abc")}) {
+    const CliRun r = run("voxelize " + deck + " -o " + quoted(vdb) + " " + bad);
+    EXPECT_EQ(r.exitCode, 1) << bad;
+    EXPECT_EQ(r.err.rfind("voxremesh: error: ", 0), 0u) << bad << ": " << r.err;
+  }
+  EXPECT_EQ(run("voxelize " + deck + " -o " + quoted(dir / "missing" / "out.vdb")).exitCode, 1);
+
+  // Slices: outside the volume, of a file that is no volume, an unknown axis, a bad scale.
+  const fs::path png = dir / "slice.png";
+  const CliRun outside =
+      run("slice " + quoted(sampleVolume()) + " --axis z --at 100 -o " + quoted(png));
+  EXPECT_EQ(outside.exitCode, 1);
+  EXPECT_TRUE(contains(outside.err, "z = 100 is outside the volume")) << outside.err;
+  EXPECT_TRUE(contains(outside.err, "-10 .. 55")) << outside.err;
+  const CliRun notVdb = run("slice " + deck + " --axis z --at 0 -o " + quoted(png));
+  EXPECT_EQ(notVdb.exitCode, 1);
+  EXPECT_TRUE(contains(notVdb.err, samplePart().string())) << notVdb.err;
+  EXPECT_EQ(run("slice " + quoted(sampleVolume()) + " --axis w --at 0 -o " + quoted(png)).exitCode,
+            1);
+  EXPECT_EQ(run("slice " + quoted(sampleVolume()) + " --axis z --at 0 --scale 0 -o " + quoted(png))
+                .exitCode,
+            1);
+  const CliRun inspectMissing = run("inspect " + quoted(dir / "none.vdb"));
+  EXPECT_EQ(inspectMissing.exitCode, 1);
+  EXPECT_TRUE(contains(inspectMissing.err, (dir / "none.vdb").string())) << inspectMissing.err;
+
+  // An existing image stays as it was.
+  writeText(dir / "kept.png", "old");
+  EXPECT_EQ(
+      run("slice " + quoted(sampleVolume()) + " --axis y --at 1000 -o " + quoted(dir / "kept.png"))
+          .exitCode,
+      1);
+  EXPECT_EQ(readText(dir / "kept.png"), "old");
+
+  for (const auto& entry : fs::directory_iterator(dir))
+    EXPECT_EQ(entry.path().filename(), "kept.png") << "left behind: " << entry.path();
+}
+
+TEST(CliVolume, UsageErrorsExitWithTwo) {
+  const fs::path dir = scratchDir("cli-volume-usage");
+  const std::string deck = quoted(samplePart());
+  const CliRun noOutput = run("voxelize " + deck);
+  EXPECT_EQ(noOutput.exitCode, 2);
+  EXPECT_TRUE(contains(noOutput.err, "missing -o PART.vdb")) << noOutput.err;
+  EXPECT_TRUE(contains(noOutput.err, "usage: voxremesh voxelize DECK")) << noOutput.err;
+  EXPECT_EQ(
+      run("voxelize " + deck + " -o " + quoted(dir / "a.vdb") + " --size 5 --voxel 5").exitCode, 2);
+  EXPECT_EQ(run("slice " + quoted(dir / "a.vdb") + " --at 0 -o " + quoted(dir / "a.png")).exitCode,
+            2);
+  EXPECT_EQ(
+      run("slice " + quoted(dir / "a.vdb") + " --axis x -o " + quoted(dir / "a.png")).exitCode, 2);
+  EXPECT_EQ(run("slice " + quoted(dir / "a.vdb") + " --axis x --at 0").exitCode, 2);
+  EXPECT_EQ(run("inspect").exitCode, 2);
+  EXPECT_EQ(run("inspect a.vdb --bogus").exitCode, 2);
+
+  // Two parts with shells and no --part: the message lists them; --part picks one.
+  writeText(dir / "two.obj",
+            "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv 20 0 0\nv 20 10 0\n"
+            "g plate\nf 1 2 3 4\ng gusset\nf 2 5 6 3\n");
+  const CliRun two = run("voxelize " + quoted(dir / "two.obj") + " -o " + quoted(dir / "two.vdb"));
+  EXPECT_EQ(two.exitCode, 2);
+  EXPECT_TRUE(contains(two.err, "2 parts with shells; choose one with --part (1, 2)")) << two.err;
+  EXPECT_FALSE(fs::exists(dir / "two.vdb"));
+  const CliRun picked = run("voxelize " + quoted(dir / "two.obj") + " -o " +
+                            quoted(dir / "two.vdb") + " --part 2 --voxel 1");
+  EXPECT_EQ(picked.exitCode, 0) << picked.err;
+  EXPECT_TRUE(contains(picked.out, "part 2 (gusset), 1 sheet, voxel size 1, ")) << picked.out;
+}
+
+TEST(CliVolume, VoxelizesTheRealBracket) {
+  VOXREMESH_REQUIRE_SHARED_DECK(deck, "bracket.k");
+  const fs::path dir = scratchDir("cli-volume-bracket");
+  const CliRun r =
+      run("voxelize " + quoted(deck) + " -o " + quoted(dir / "bracket.vdb") + " --size 4.5");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "part 4075 (Recliner Bkt i/b), 1 sheet, voxel size 4.5, ")) << r.out;
+  const Json report = inspectJson(dir / "bracket.vdb");
+  EXPECT_GT(report["grids"].items.at(0)["active_voxels"].number, 0);
+  EXPECT_GT(report["invalid_voxels"].number, 0);  // outer contour and holes
+  EXPECT_GT(report["boundary_loops"].number, 1);
+  // The bracket sits around x = 3000 in car coordinates: slice it there.
+  const Json& world = report["grids"].items.at(0)["world_bbox"];
+  const double xMid =
+      (world.items.at(0).items.at(0).number + world.items.at(1).items.at(0).number) / 2;
+  const CliRun slice = run("slice " + quoted(dir / "bracket.vdb") + " --axis x --at " +
+                           std::to_string(xMid) + " -o " + quoted(dir / "x.png"));
+  ASSERT_EQ(slice.exitCode, 0) << slice.err;
+  EXPECT_NO_THROW(voxremesh::test::decodePng(readText(dir / "x.png")));
+}
+
+TEST(CliVolume, VoxelizesTheRealWheel) {
+  VOXREMESH_REQUIRE_SHARED_DECK(deck, "wheel.k");
+  const fs::path dir = scratchDir("cli-volume-wheel");
+  // No size: the mean edge length; the wheel's non-manifold T-junctions give several sheets.
+  const CliRun r = run("voxelize " + quoted(deck) + " -o " + quoted(dir / "wheel.vdb"));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "part 1 (MC - rim - front- R), ")) << r.out;
+  EXPECT_TRUE(contains(r.out, " sheets, ")) << r.out;
+  const Json report = inspectJson(dir / "wheel.vdb");
+  EXPECT_GT(report["grids"].items.at(0)["active_voxels"].number, 0);
+  EXPECT_GT(report["feature_cells"].number, 0);
+}
