@@ -158,6 +158,29 @@ TEST(CliVolume, VoxelizeWritesTheThreeGrids) {
   }
 }
 
+TEST(CliVolume, PythonOpenVdbReadsTheGrids) {
+  const fs::path vdb = sampleVolume();
+  // Debian's python3-openvdb imports only under the system interpreter.
+  if (runShell("/usr/bin/python3 -c 'import pyopenvdb' 2>/dev/null").exitCode != 0)
+    GTEST_SKIP() << "python3-openvdb (pyopenvdb) not installed";
+  const auto read = runShell(
+      "/usr/bin/python3 -c 'import sys, pyopenvdb as vdb\n"
+      "grids, meta = vdb.readAll(sys.argv[1])\n"
+      "for g in sorted(grids, key=lambda g: g.name): print(g.name, g.valueTypeName, "
+      "g.activeVoxelCount())\n"
+      "print(\"part\", meta[\"voxremesh_part_id\"])' " +
+      quoted(vdb));
+  ASSERT_EQ(read.exitCode, 0) << read.output;
+  const Json report = inspectJson(vdb);
+  for (const Json& grid : report["grids"].items) {
+    const std::string line = grid["name"].text +
+                             (grid["name"].text == "sdf" ? " float " : " bool ") +
+                             std::to_string(static_cast<long>(grid["active_voxels"].number));
+    EXPECT_TRUE(contains(read.output, line)) << line << "\n" << read.output;
+  }
+  EXPECT_TRUE(contains(read.output, "part 100")) << read.output;
+}
+
 TEST(CliVolume, InspectReportsTheGrids) {
   const Json report = inspectJson(sampleVolume());
   EXPECT_EQ(report["part"].number, 100);
@@ -360,4 +383,16 @@ TEST(CliVolume, VoxelizesTheRealWheel) {
   const Json report = inspectJson(dir / "wheel.vdb");
   EXPECT_GT(report["grids"].items.at(0)["active_voxels"].number, 0);
   EXPECT_GT(report["feature_cells"].number, 0);
+}
+
+TEST(CliVolume, VoxelizesTheBirdStrikePlate) {
+  VOXREMESH_REQUIRE_SHARED_DECK(deck, "bird.k");
+  const fs::path dir = scratchDir("cli-volume-bird");
+  // Part 1 is the shell plate; the SPH bird (part 101) has no shells and is not a choice.
+  const CliRun r = run("voxelize " + quoted(deck) + " -o " + quoted(dir / "bird.vdb"));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "part 1")) << r.out;
+  const Json report = inspectJson(dir / "bird.vdb");
+  EXPECT_GT(report["grids"].items.at(0)["active_voxels"].number, 0);
+  EXPECT_GT(report["invalid_voxels"].number, 0);  // the plate has free edges all round
 }

@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   g++ cmake make ccache
   libopenvdb-dev libboost-iostreams-dev libtbb-dev libopenmesh-dev libgtest-dev zlib1g-dev
-  libopenvdb-tools
+  libopenvdb-tools python3-openvdb
 )
 
 missing=()

@@ -144,6 +144,20 @@ typename GridT::Ptr readTypedGrid(openvdb::io::File& file, const char* name,
   return grid;
 }
 
+/// Reads a mask grid written as a BoolGrid (marked voxels active) or as a MaskGrid.
+openvdb::MaskGrid::Ptr readMaskGrid(openvdb::io::File& file, const char* name,
+                                    const std::string& path) {
+  if (file.hasGrid(name) && file.readGridMetadata(name)->isType<openvdb::BoolGrid>()) {
+    const openvdb::BoolGrid::Ptr bools = readTypedGrid<openvdb::BoolGrid>(file, name, path, "bool");
+    openvdb::MaskGrid::Ptr mask = openvdb::MaskGrid::create(openvdb::MaskTree::Ptr(
+        new openvdb::MaskTree(bools->tree(), false, openvdb::TopologyCopy())));
+    mask->setName(bools->getName());
+    mask->setTransform(bools->transformPtr());
+    return mask;
+  }
+  return readTypedGrid<openvdb::MaskGrid>(file, name, path, "bool or mask");
+}
+
 }  // namespace
 
 void writeVolume(const Volume& volume, const std::filesystem::path& path) {
@@ -158,8 +172,13 @@ void writeVolume(const Volume& volume, const std::filesystem::path& path) {
   sdf->setCreator(creator);
   addInfo(*sdf, v.info);
   grids.push_back(sdf);
+  // The masks are written as bool grids (active = marked, value true): Python's pyopenvdb and
+  // other readers know BoolGrid but not MaskGrid. readVolume turns them back into masks.
   for (const openvdb::MaskGrid::Ptr& mask : {v.invalid, v.feature}) {
-    openvdb::MaskGrid::Ptr copy = openvdb::gridPtrCast<openvdb::MaskGrid>(mask->copyGrid());
+    openvdb::BoolGrid::Ptr copy = openvdb::BoolGrid::create(openvdb::BoolTree::Ptr(
+        new openvdb::BoolTree(mask->tree(), false, true, openvdb::TopologyCopy())));
+    copy->setName(mask->getName());
+    copy->setTransform(mask->transformPtr());
     copy->setCreator(creator);
     grids.push_back(copy);
   }
@@ -205,8 +224,8 @@ Volume readVolume(const std::filesystem::path& path) {
   Volume::Impl& v = result.impl();
   try {
     v.sdf = readTypedGrid<openvdb::FloatGrid>(file, volume::kSdfGridName, name, "float");
-    v.invalid = readTypedGrid<openvdb::MaskGrid>(file, volume::kInvalidGridName, name, "mask");
-    v.feature = readTypedGrid<openvdb::MaskGrid>(file, volume::kFeatureGridName, name, "mask");
+    v.invalid = readMaskGrid(file, volume::kInvalidGridName, name);
+    v.feature = readMaskGrid(file, volume::kFeatureGridName, name);
   } catch (const openvdb::Exception& e) {
     throw InputError(name, 0, std::string("cannot read the grids (") + e.what() + ")");
   }
