@@ -169,8 +169,10 @@ Volume buildVolume(const std::vector<Sheet>& sheets, const VolumeSettings& setti
                    const VolumeSource& source = {});
 
 /// Writes the volume to a .vdb file with grids "sdf", "invalid" and "feature" and voxremesh
-/// metadata (voxel size, band, thresholds, source file, part ID, tool version, curves). The file
-/// appears complete or not at all. Throws std::invalid_argument for an empty volume and
+/// metadata (voxel size, band, thresholds, source file, part ID, tool version, curves). The masks
+/// are stored as bool grids (marked voxels active, value true) because pyopenvdb and other
+/// readers do not know MaskGrid; readVolume accepts bool or mask grids. The file appears complete
+/// or not at all. Throws std::invalid_argument for an empty volume and
 /// std::runtime_error naming the path when it cannot be written.
 void writeVolume(const Volume& volume, const std::filesystem::path& path);
 
