@@ -12,31 +12,15 @@
 #include "support/test_support.h"
 
 namespace fs = std::filesystem;
+using voxremesh::test::CliRun;
+using voxremesh::test::quoted;
 using voxremesh::test::readText;
 using voxremesh::test::runCli;
+using voxremesh::test::runCliSplit;
 using voxremesh::test::scratchDir;
 using voxremesh::test::writeText;
 
 namespace {
-
-// A run with stdout and stderr kept apart.
-struct CliRun {
-  int exitCode = -1;
-  std::string out;
-  std::string err;
-};
-
-CliRun run(const std::string& args) {
-  const fs::path dir = scratchDir("cli-run");
-  const fs::path out = dir / "stdout", err = dir / "stderr";
-  // runCli appends "2>&1"; after "; exit $?" it applies to the exit only.
-  const auto result = runCli(args + " >'" + out.string() + "' 2>'" + err.string() + "'; exit $?");
-  return {result.exitCode, readText(out), readText(err)};
-}
-
-std::string quoted(const fs::path& path) {
-  return "'" + path.string() + "'";
-}
 
 void appendField(std::string& line, const std::string& text, std::size_t width) {
   line += std::string(width > text.size() ? width - text.size() : 0, ' ') + text;
@@ -100,50 +84,50 @@ double jsonNumber(const std::string& json, const std::string& key, std::size_t f
 }  // namespace
 
 TEST(Cli, HelpListsTheCommands) {
-  const CliRun r = run("--help");
+  const CliRun r = runCliSplit("--help");
   EXPECT_EQ(r.exitCode, 0);
   EXPECT_NE(r.out.find("usage: voxremesh COMMAND"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("info"), std::string::npos);
   EXPECT_NE(r.out.find("convert"), std::string::npos);
   EXPECT_TRUE(r.err.empty());
-  const CliRun info = run("help info");
+  const CliRun info = runCliSplit("help info");
   EXPECT_EQ(info.exitCode, 0);
   EXPECT_NE(info.out.find("usage: voxremesh info DECK"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("--tolerance"), std::string::npos);
-  const CliRun convert = run("convert --help");
+  const CliRun convert = runCliSplit("convert --help");
   EXPECT_EQ(convert.exitCode, 0);
   EXPECT_NE(convert.out.find("--ascii"), std::string::npos) << convert.out;
-  EXPECT_EQ(run("help nonsense").exitCode, 2);
+  EXPECT_EQ(runCliSplit("help nonsense").exitCode, 2);
 }
 
 TEST(Cli, VersionPrintsTheProjectVersion) {
-  const CliRun r = run("--version");
+  const CliRun r = runCliSplit("--version");
   EXPECT_EQ(r.exitCode, 0);
   EXPECT_EQ(r.out, std::string("voxremesh ") + VOXREMESH_VERSION + "\n");
 }
 
 TEST(Cli, UsageErrorsExitWithTwo) {
-  const CliRun unknown = run("frobnicate");
+  const CliRun unknown = runCliSplit("frobnicate");
   EXPECT_EQ(unknown.exitCode, 2);
   EXPECT_NE(unknown.err.find("unknown command 'frobnicate'"), std::string::npos) << unknown.err;
   EXPECT_NE(unknown.err.find("usage:"), std::string::npos);
   EXPECT_TRUE(unknown.out.empty());
-  EXPECT_EQ(run("").exitCode, 2);
-  const CliRun option = run("info deck.k --bogus");
+  EXPECT_EQ(runCliSplit("").exitCode, 2);
+  const CliRun option = runCliSplit("info deck.k --bogus");
   EXPECT_EQ(option.exitCode, 2);
   EXPECT_NE(option.err.find("unknown option '--bogus'"), std::string::npos) << option.err;
   EXPECT_NE(option.err.find("usage: voxremesh info DECK"), std::string::npos) << option.err;
-  const CliRun missing = run("info");
+  const CliRun missing = runCliSplit("info");
   EXPECT_EQ(missing.exitCode, 2);
   EXPECT_NE(missing.err.find("missing argument"), std::string::npos) << missing.err;
-  EXPECT_EQ(run("convert only-one.k").exitCode, 2);
-  EXPECT_EQ(run("info a.k b.k").exitCode, 2);
-  EXPECT_EQ(run("info a.k --format").exitCode, 2);  // option without its value
+  EXPECT_EQ(runCliSplit("convert only-one.k").exitCode, 2);
+  EXPECT_EQ(runCliSplit("info a.k b.k").exitCode, 2);
+  EXPECT_EQ(runCliSplit("info a.k --format").exitCode, 2);  // option without its value
 }
 
 TEST(Cli, InfoOnAMissingFileNamesIt) {
   const fs::path missing = scratchDir("cli-missing") / "no-such-deck.k";
-  const CliRun r = run("info " + quoted(missing));
+  const CliRun r = runCliSplit("info " + quoted(missing));
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_EQ(r.err.rfind("voxremesh: error: ", 0), 0u) << r.err;
   EXPECT_NE(r.err.find(missing.string()), std::string::npos) << r.err;
@@ -153,7 +137,7 @@ TEST(Cli, InfoOnAMissingFileNamesIt) {
 TEST(Cli, InfoOnAMalformedDeckNamesFileAndLine) {
   const fs::path dir = scratchDir("cli-malformed");
   writeText(dir / "bad.k", malformedDeck());
-  const CliRun r = run("info " + quoted(dir / "bad.k"));
+  const CliRun r = runCliSplit("info " + quoted(dir / "bad.k"));
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.err.find((dir / "bad.k").string() + ":10"), std::string::npos) << r.err;
   EXPECT_TRUE(r.out.empty());
@@ -162,14 +146,14 @@ TEST(Cli, InfoOnAMalformedDeckNamesFileAndLine) {
 TEST(Cli, InfoPrintsTheTableAndValidJson) {
   const fs::path dir = scratchDir("cli-info");
   writeText(dir / "deck.k", sampleDeck());
-  const CliRun table = run("info " + quoted(dir / "deck.k"));
+  const CliRun table = runCliSplit("info " + quoted(dir / "deck.k"));
   ASSERT_EQ(table.exitCode, 0) << table.err;
   EXPECT_NE(table.out.find("plate"), std::string::npos) << table.out;
   EXPECT_NE(table.out.find("gusset"), std::string::npos) << table.out;
   EXPECT_NE(table.out.find("total"), std::string::npos);
   EXPECT_NE(table.out.find("Findings"), std::string::npos);
 
-  const CliRun json = run("info " + quoted(dir / "deck.k") + " --json");
+  const CliRun json = runCliSplit("info " + quoted(dir / "deck.k") + " --json");
   ASSERT_EQ(json.exitCode, 0) << json.err;
   EXPECT_NO_THROW(voxremesh::test::parseJson(json.out)) << json.out;
   for (const char* key :
@@ -186,41 +170,44 @@ TEST(Cli, InfoPrintsTheTableAndValidJson) {
   EXPECT_EQ(jsonNumber(json.out, "boundaryLoops", total), 1);
 
   // --tolerance is honoured and checked; --format reads a deck whatever its extension.
-  const CliRun tolerance = run("info " + quoted(dir / "deck.k") + " --json --tolerance 0.125");
+  const CliRun tolerance =
+      runCliSplit("info " + quoted(dir / "deck.k") + " --json --tolerance 0.125");
   ASSERT_EQ(tolerance.exitCode, 0) << tolerance.err;
   EXPECT_EQ(jsonNumber(tolerance.out, "tolerance"), 0.125);
-  const CliRun badTolerance = run("info " + quoted(dir / "deck.k") + " --tolerance abc");
+  const CliRun badTolerance = runCliSplit("info " + quoted(dir / "deck.k") + " --tolerance abc");
   EXPECT_EQ(badTolerance.exitCode, 1);
   EXPECT_NE(badTolerance.err.find("--tolerance expects a number, not 'abc'"), std::string::npos)
       << badTolerance.err;
-  EXPECT_EQ(run("info " + quoted(dir / "deck.k") + " --tolerance -1").exitCode, 1);
+  EXPECT_EQ(runCliSplit("info " + quoted(dir / "deck.k") + " --tolerance -1").exitCode, 1);
   fs::copy_file(dir / "deck.k", dir / "deck.txt");
-  EXPECT_EQ(run("info " + quoted(dir / "deck.txt")).exitCode, 1);  // unknown extension
-  EXPECT_EQ(run("info " + quoted(dir / "deck.txt") + " --format=k").exitCode, 0);
+  EXPECT_EQ(runCliSplit("info " + quoted(dir / "deck.txt")).exitCode, 1);  // unknown extension
+  EXPECT_EQ(runCliSplit("info " + quoted(dir / "deck.txt") + " --format=k").exitCode, 0);
 }
 
 TEST(Cli, ConvertToObjAndBackKeepsTheCounts) {
   const fs::path dir = scratchDir("cli-convert");
   writeText(dir / "deck.k", sampleDeck());
-  const CliRun toObj = run("convert " + quoted(dir / "deck.k") + " " + quoted(dir / "mesh.obj"));
+  const CliRun toObj =
+      runCliSplit("convert " + quoted(dir / "deck.k") + " " + quoted(dir / "mesh.obj"));
   ASSERT_EQ(toObj.exitCode, 0) << toObj.err;
   EXPECT_NE(toObj.out.find("wrote " + (dir / "mesh.obj").string() + ": 22 nodes, 14 shells"),
             std::string::npos)
       << toObj.out;
   ASSERT_TRUE(fs::exists(dir / "mesh.obj"));
-  const CliRun back = run("convert " + quoted(dir / "mesh.obj") + " " + quoted(dir / "back.k"));
+  const CliRun back =
+      runCliSplit("convert " + quoted(dir / "mesh.obj") + " " + quoted(dir / "back.k"));
   ASSERT_EQ(back.exitCode, 0) << back.err;
 
-  const CliRun original = run("info --json " + quoted(dir / "deck.k"));
-  const CliRun roundTrip = run("info --json " + quoted(dir / "back.k"));
+  const CliRun original = runCliSplit("info --json " + quoted(dir / "deck.k"));
+  const CliRun roundTrip = runCliSplit("info --json " + quoted(dir / "back.k"));
   ASSERT_EQ(roundTrip.exitCode, 0) << roundTrip.err;
   const std::size_t a = original.out.find("\"total\""), b = roundTrip.out.find("\"total\"");
   for (const char* key : {"nodes", "quads", "trias", "edges", "boundaryEdges"})
     EXPECT_EQ(jsonNumber(original.out, key, a), jsonNumber(roundTrip.out, key, b)) << key;
 
   // --ascii is for STL and PLY only: a warning, on stderr, for OBJ.
-  const CliRun ascii =
-      run("convert " + quoted(dir / "deck.k") + " " + quoted(dir / "ascii.obj") + " --ascii");
+  const CliRun ascii = runCliSplit("convert " + quoted(dir / "deck.k") + " " +
+                                   quoted(dir / "ascii.obj") + " --ascii");
   EXPECT_EQ(ascii.exitCode, 0);
   EXPECT_NE(ascii.err.find("warning: --ascii only affects STL and PLY"), std::string::npos)
       << ascii.err;
@@ -229,22 +216,25 @@ TEST(Cli, ConvertToObjAndBackKeepsTheCounts) {
 TEST(Cli, FailedConvertLeavesNoOutputFile) {
   const fs::path dir = scratchDir("cli-convert-fail");
   writeText(dir / "bad.k", malformedDeck());
-  const CliRun bad = run("convert " + quoted(dir / "bad.k") + " " + quoted(dir / "out.obj"));
+  const CliRun bad =
+      runCliSplit("convert " + quoted(dir / "bad.k") + " " + quoted(dir / "out.obj"));
   EXPECT_EQ(bad.exitCode, 1);
   EXPECT_EQ(bad.err.rfind("voxremesh: error: ", 0), 0u) << bad.err;
   EXPECT_FALSE(fs::exists(dir / "out.obj"));
   // An existing target stays as it was.
   writeText(dir / "kept.obj", "old content\n");
-  EXPECT_EQ(run("convert " + quoted(dir / "bad.k") + " " + quoted(dir / "kept.obj")).exitCode, 1);
+  EXPECT_EQ(
+      runCliSplit("convert " + quoted(dir / "bad.k") + " " + quoted(dir / "kept.obj")).exitCode, 1);
   EXPECT_EQ(readText(dir / "kept.obj"), "old content\n");
   // A target folder that does not exist.
   writeText(dir / "good.k", sampleDeck());
   const CliRun noFolder =
-      run("convert " + quoted(dir / "good.k") + " " + quoted(dir / "missing" / "out.obj"));
+      runCliSplit("convert " + quoted(dir / "good.k") + " " + quoted(dir / "missing" / "out.obj"));
   EXPECT_EQ(noFolder.exitCode, 1);
   EXPECT_FALSE(fs::exists(dir / "missing" / "out.obj"));
   // An unknown target format fails before anything is read or written.
-  const CliRun format = run("convert " + quoted(dir / "good.k") + " " + quoted(dir / "out.xyz"));
+  const CliRun format =
+      runCliSplit("convert " + quoted(dir / "good.k") + " " + quoted(dir / "out.xyz"));
   EXPECT_EQ(format.exitCode, 1);
   EXPECT_NE(format.err.find("xyz"), std::string::npos) << format.err;
   for (const auto& entry : fs::directory_iterator(dir))

@@ -15,33 +15,17 @@
 #include "support/test_support.h"
 
 namespace fs = std::filesystem;
+using voxremesh::test::CliRun;
 using voxremesh::test::Json;
 using voxremesh::test::parseJson;
+using voxremesh::test::quoted;
 using voxremesh::test::readText;
 using voxremesh::test::runCli;
+using voxremesh::test::runCliSplit;
 using voxremesh::test::scratchDir;
 using voxremesh::test::writeText;
 
 namespace {
-
-// A run with stdout and stderr kept apart.
-struct CliRun {
-  int exitCode = -1;
-  std::string out;
-  std::string err;
-};
-
-CliRun run(const std::string& args) {
-  const fs::path dir = scratchDir("cli-volume-run");
-  const fs::path out = dir / "stdout", err = dir / "stderr";
-  // runCli appends "2>&1"; after "; exit $?" it applies to the exit only.
-  const auto result = runCli(args + " >'" + out.string() + "' 2>'" + err.string() + "'; exit $?");
-  return {result.exitCode, readText(out), readText(err)};
-}
-
-std::string quoted(const fs::path& path) {
-  return "'" + path.string() + "'";
-}
 
 fs::path samplePart() {
   return fs::path(VOXREMESH_SOURCE_DIR) / "tools" / "samples" / "hat_rail.k";
@@ -77,7 +61,8 @@ const fs::path& sampleVolume() {
   static const fs::path path = [] {
     const fs::path dir = scratchDir("cli-volume-sample");
     const fs::path vdb = dir / "rail.vdb";
-    const CliRun r = run("voxelize " + quoted(samplePart()) + " -o " + quoted(vdb) + " --size 5");
+    const CliRun r =
+        runCliSplit("voxelize " + quoted(samplePart()) + " -o " + quoted(vdb) + " --size 5");
     EXPECT_EQ(r.exitCode, 0) << r.err;
     return vdb;
   }();
@@ -85,7 +70,7 @@ const fs::path& sampleVolume() {
 }
 
 Json inspectJson(const fs::path& vdb) {
-  const CliRun r = run("inspect " + quoted(vdb) + " --json");
+  const CliRun r = runCliSplit("inspect " + quoted(vdb) + " --json");
   EXPECT_EQ(r.exitCode, 0) << r.err;
   return parseJson(r.out);
 }
@@ -106,26 +91,27 @@ voxremesh::test::CliResult runShell(const std::string& command) {
 }  // namespace
 
 TEST(CliVolume, HelpListsAndDocumentsTheCommands) {
-  const CliRun help = run("--help");
+  const CliRun help = runCliSplit("--help");
   ASSERT_EQ(help.exitCode, 0);
   for (const char* command : {"voxelize", "inspect", "slice"})
     EXPECT_TRUE(contains(help.out, command)) << command;
-  const CliRun voxelize = run("help voxelize");
+  const CliRun voxelize = runCliSplit("help voxelize");
   EXPECT_EQ(voxelize.exitCode, 0);
   for (const char* option : {"-o PART.vdb", "--size H", "--voxel V", "--part PID", "--band N",
                              "--feature-angle DEG", "--invalid-angle DEG", "--format F"})
     EXPECT_TRUE(contains(voxelize.out, option)) << option << "\n" << voxelize.out;
-  const CliRun slice = run("slice --help");
+  const CliRun slice = runCliSplit("slice --help");
   EXPECT_EQ(slice.exitCode, 0);
   for (const char* colour : {"blue", "white", "red", "grey", "yellow", "black"})
     EXPECT_TRUE(contains(slice.out, colour)) << colour << "\n" << slice.out;
-  EXPECT_TRUE(contains(run("help inspect").out, "--json"));
+  EXPECT_TRUE(contains(runCliSplit("help inspect").out, "--json"));
 }
 
 TEST(CliVolume, VoxelizeWritesTheThreeGrids) {
   const fs::path dir = scratchDir("cli-volume-voxelize");
   const fs::path vdb = dir / "rail.vdb";
-  const CliRun r = run("voxelize " + quoted(samplePart()) + " -o " + quoted(vdb) + " --size 5");
+  const CliRun r =
+      runCliSplit("voxelize " + quoted(samplePart()) + " -o " + quoted(vdb) + " --size 5");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
   EXPECT_EQ(
@@ -202,7 +188,7 @@ TEST(CliVolume, InspectReportsTheGrids) {
   EXPECT_EQ(box.items.at(0).items.at(0).number, -10);
   EXPECT_EQ(box.items.at(1).items.at(0).number, 410);
 
-  const CliRun table = run("inspect " + quoted(sampleVolume()));
+  const CliRun table = runCliSplit("inspect " + quoted(sampleVolume()));
   ASSERT_EQ(table.exitCode, 0) << table.err;
   EXPECT_EQ(table.out.rfind(sampleVolume().string() + "\n\nvolume of part 100", 0), 0u)
       << table.out;
@@ -219,8 +205,8 @@ TEST(CliVolume, SliceWritesAPngOfTheSection) {
 
   // Across the walls: both sides of the sheet, invalid voxels beyond the rail's open ends.
   const fs::path zPng = dir / "z.png";
-  const CliRun z = run("slice " + quoted(sampleVolume()) + " --axis z --at " +
-                       std::to_string(zMid) + " -o " + quoted(zPng));
+  const CliRun z = runCliSplit("slice " + quoted(sampleVolume()) + " --axis z --at " +
+                               std::to_string(zMid) + " -o " + quoted(zPng));
   ASSERT_EQ(z.exitCode, 0) << z.err;
   const voxremesh::test::DecodedPng zImage = voxremesh::test::decodePng(readText(zPng));
   EXPECT_TRUE(contains(z.out, "wrote " + zPng.string() + ": " + std::to_string(zImage.width) +
@@ -234,8 +220,8 @@ TEST(CliVolume, SliceWritesAPngOfTheSection) {
 
   // The rail's section at mid-length: feature markers at the bends, invalid beyond the flanges.
   const fs::path xPng = dir / "x.png";
-  const CliRun x = run("slice " + quoted(sampleVolume()) + " --axis x --at 200 -o " + quoted(xPng) +
-                       " --scale 4");
+  const CliRun x = runCliSplit("slice " + quoted(sampleVolume()) + " --axis x --at 200 -o " +
+                               quoted(xPng) + " --scale 4");
   ASSERT_EQ(x.exitCode, 0) << x.err;
   EXPECT_TRUE(contains(x.out,
                        "x = 200 (voxel layer 40), y -10 .. 160 left to right, z -10 .. "
@@ -259,23 +245,24 @@ TEST(CliVolume, BadInputFailsWithoutOutput) {
   const fs::path vdb = dir / "out.vdb";
   const std::string deck = quoted(samplePart());
 
-  const CliRun missing = run("voxelize " + quoted(dir / "no-such.k") + " -o " + quoted(vdb));
+  const CliRun missing =
+      runCliSplit("voxelize " + quoted(dir / "no-such.k") + " -o " + quoted(vdb));
   EXPECT_EQ(missing.exitCode, 1);
   EXPECT_EQ(missing.err.rfind("voxremesh: error: ", 0), 0u) << missing.err;
   EXPECT_TRUE(contains(missing.err, (dir / "no-such.k").string())) << missing.err;
 
-  const CliRun negative = run("voxelize " + deck + " -o " + quoted(vdb) + " --voxel -1");
+  const CliRun negative = runCliSplit("voxelize " + deck + " -o " + quoted(vdb) + " --voxel -1");
   EXPECT_EQ(negative.exitCode, 1);
   EXPECT_TRUE(contains(negative.err, "voxel size must be a finite number > 0 (got -1)"))
       << negative.err;
 
   // A voxel size the machine cannot hold is refused before anything is allocated.
-  const CliRun tiny = run("voxelize " + deck + " -o " + quoted(vdb) + " --voxel 0.0001");
+  const CliRun tiny = runCliSplit("voxelize " + deck + " -o " + quoted(vdb) + " --voxel 0.0001");
   EXPECT_EQ(tiny.exitCode, 1);
   EXPECT_TRUE(contains(tiny.err, "more than the memory limit")) << tiny.err;
   EXPECT_TRUE(contains(tiny.err, "choose a voxel size of at least")) << tiny.err;
 
-  const CliRun part = run("voxelize " + deck + " -o " + quoted(vdb) + " --part 999");
+  const CliRun part = runCliSplit("voxelize " + deck + " -o " + quoted(vdb) + " --part 999");
   EXPECT_EQ(part.exitCode, 1);
   EXPECT_TRUE(contains(part.err, "no part 999 in ")) << part.err;
   EXPECT_TRUE(contains(part.err, "parts with shells: 100")) << part.err;
@@ -283,37 +270,40 @@ TEST(CliVolume, BadInputFailsWithoutOutput) {
   for (const std::string& bad : {std::string("--size nan"), std::string("--size -2"),
                                  std::string("--band 0"), std::string("--invalid-angle 95"),
                                  std::string("--feature-angle 200"), std::string("--part abc")}) {
-    const CliRun r = run("voxelize " + deck + " -o " + quoted(vdb) + " " + bad);
+    const CliRun r = runCliSplit("voxelize " + deck + " -o " + quoted(vdb) + " " + bad);
     EXPECT_EQ(r.exitCode, 1) << bad;
     EXPECT_EQ(r.err.rfind("voxremesh: error: ", 0), 0u) << bad << ": " << r.err;
   }
-  EXPECT_EQ(run("voxelize " + deck + " -o " + quoted(dir / "missing" / "out.vdb")).exitCode, 1);
+  EXPECT_EQ(runCliSplit("voxelize " + deck + " -o " + quoted(dir / "missing" / "out.vdb")).exitCode,
+            1);
 
   // Slices: outside the volume, of a file that is no volume, an unknown axis, a bad scale.
   const fs::path png = dir / "slice.png";
   const CliRun outside =
-      run("slice " + quoted(sampleVolume()) + " --axis z --at 100 -o " + quoted(png));
+      runCliSplit("slice " + quoted(sampleVolume()) + " --axis z --at 100 -o " + quoted(png));
   EXPECT_EQ(outside.exitCode, 1);
   EXPECT_TRUE(contains(outside.err, "z = 100 is outside the volume")) << outside.err;
   EXPECT_TRUE(contains(outside.err, "-10 .. 55")) << outside.err;
-  const CliRun notVdb = run("slice " + deck + " --axis z --at 0 -o " + quoted(png));
+  const CliRun notVdb = runCliSplit("slice " + deck + " --axis z --at 0 -o " + quoted(png));
   EXPECT_EQ(notVdb.exitCode, 1);
   EXPECT_TRUE(contains(notVdb.err, samplePart().string())) << notVdb.err;
-  EXPECT_EQ(run("slice " + quoted(sampleVolume()) + " --axis w --at 0 -o " + quoted(png)).exitCode,
-            1);
-  EXPECT_EQ(run("slice " + quoted(sampleVolume()) + " --axis z --at 0 --scale 0 -o " + quoted(png))
+  EXPECT_EQ(runCliSplit("slice " + quoted(sampleVolume()) + " --axis w --at 0 -o " + quoted(png))
                 .exitCode,
             1);
-  const CliRun inspectMissing = run("inspect " + quoted(dir / "none.vdb"));
+  EXPECT_EQ(runCliSplit("slice " + quoted(sampleVolume()) + " --axis z --at 0 --scale 0 -o " +
+                        quoted(png))
+                .exitCode,
+            1);
+  const CliRun inspectMissing = runCliSplit("inspect " + quoted(dir / "none.vdb"));
   EXPECT_EQ(inspectMissing.exitCode, 1);
   EXPECT_TRUE(contains(inspectMissing.err, (dir / "none.vdb").string())) << inspectMissing.err;
 
   // An existing image stays as it was.
   writeText(dir / "kept.png", "old");
-  EXPECT_EQ(
-      run("slice " + quoted(sampleVolume()) + " --axis y --at 1000 -o " + quoted(dir / "kept.png"))
-          .exitCode,
-      1);
+  EXPECT_EQ(runCliSplit("slice " + quoted(sampleVolume()) + " --axis y --at 1000 -o " +
+                        quoted(dir / "kept.png"))
+                .exitCode,
+            1);
   EXPECT_EQ(readText(dir / "kept.png"), "old");
 
   for (const auto& entry : fs::directory_iterator(dir))
@@ -323,30 +313,34 @@ TEST(CliVolume, BadInputFailsWithoutOutput) {
 TEST(CliVolume, UsageErrorsExitWithTwo) {
   const fs::path dir = scratchDir("cli-volume-usage");
   const std::string deck = quoted(samplePart());
-  const CliRun noOutput = run("voxelize " + deck);
+  const CliRun noOutput = runCliSplit("voxelize " + deck);
   EXPECT_EQ(noOutput.exitCode, 2);
   EXPECT_TRUE(contains(noOutput.err, "missing -o PART.vdb")) << noOutput.err;
   EXPECT_TRUE(contains(noOutput.err, "usage: voxremesh voxelize DECK")) << noOutput.err;
-  EXPECT_EQ(
-      run("voxelize " + deck + " -o " + quoted(dir / "a.vdb") + " --size 5 --voxel 5").exitCode, 2);
-  EXPECT_EQ(run("slice " + quoted(dir / "a.vdb") + " --at 0 -o " + quoted(dir / "a.png")).exitCode,
+  EXPECT_EQ(runCliSplit("voxelize " + deck + " -o " + quoted(dir / "a.vdb") + " --size 5 --voxel 5")
+                .exitCode,
             2);
-  EXPECT_EQ(
-      run("slice " + quoted(dir / "a.vdb") + " --axis x -o " + quoted(dir / "a.png")).exitCode, 2);
-  EXPECT_EQ(run("slice " + quoted(dir / "a.vdb") + " --axis x --at 0").exitCode, 2);
-  EXPECT_EQ(run("inspect").exitCode, 2);
-  EXPECT_EQ(run("inspect a.vdb --bogus").exitCode, 2);
+  EXPECT_EQ(runCliSplit("slice " + quoted(dir / "a.vdb") + " --at 0 -o " + quoted(dir / "a.png"))
+                .exitCode,
+            2);
+  EXPECT_EQ(runCliSplit("slice " + quoted(dir / "a.vdb") + " --axis x -o " + quoted(dir / "a.png"))
+                .exitCode,
+            2);
+  EXPECT_EQ(runCliSplit("slice " + quoted(dir / "a.vdb") + " --axis x --at 0").exitCode, 2);
+  EXPECT_EQ(runCliSplit("inspect").exitCode, 2);
+  EXPECT_EQ(runCliSplit("inspect a.vdb --bogus").exitCode, 2);
 
   // Two parts with shells and no --part: the message lists them; --part picks one.
   writeText(dir / "two.obj",
             "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv 20 0 0\nv 20 10 0\n"
             "g plate\nf 1 2 3 4\ng gusset\nf 2 5 6 3\n");
-  const CliRun two = run("voxelize " + quoted(dir / "two.obj") + " -o " + quoted(dir / "two.vdb"));
+  const CliRun two =
+      runCliSplit("voxelize " + quoted(dir / "two.obj") + " -o " + quoted(dir / "two.vdb"));
   EXPECT_EQ(two.exitCode, 2);
   EXPECT_TRUE(contains(two.err, "2 parts with shells; choose one with --part (1, 2)")) << two.err;
   EXPECT_FALSE(fs::exists(dir / "two.vdb"));
-  const CliRun picked = run("voxelize " + quoted(dir / "two.obj") + " -o " +
-                            quoted(dir / "two.vdb") + " --part 2 --voxel 1");
+  const CliRun picked = runCliSplit("voxelize " + quoted(dir / "two.obj") + " -o " +
+                                    quoted(dir / "two.vdb") + " --part 2 --voxel 1");
   EXPECT_EQ(picked.exitCode, 0) << picked.err;
   EXPECT_TRUE(contains(picked.out, "part 2 (gusset), 1 sheet, voxel size 1, ")) << picked.out;
 }
@@ -354,8 +348,8 @@ TEST(CliVolume, UsageErrorsExitWithTwo) {
 TEST(CliVolume, VoxelizesTheRealBracket) {
   VOXREMESH_REQUIRE_SHARED_DECK(deck, "bracket.k");
   const fs::path dir = scratchDir("cli-volume-bracket");
-  const CliRun r =
-      run("voxelize " + quoted(deck) + " -o " + quoted(dir / "bracket.vdb") + " --size 4.5");
+  const CliRun r = runCliSplit("voxelize " + quoted(deck) + " -o " + quoted(dir / "bracket.vdb") +
+                               " --size 4.5");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_TRUE(contains(r.out, "part 4075 (Recliner Bkt i/b), 1 sheet, voxel size 4.5, ")) << r.out;
   const Json report = inspectJson(dir / "bracket.vdb");
@@ -366,8 +360,8 @@ TEST(CliVolume, VoxelizesTheRealBracket) {
   const Json& world = report["grids"].items.at(0)["world_bbox"];
   const double xMid =
       (world.items.at(0).items.at(0).number + world.items.at(1).items.at(0).number) / 2;
-  const CliRun slice = run("slice " + quoted(dir / "bracket.vdb") + " --axis x --at " +
-                           std::to_string(xMid) + " -o " + quoted(dir / "x.png"));
+  const CliRun slice = runCliSplit("slice " + quoted(dir / "bracket.vdb") + " --axis x --at " +
+                                   std::to_string(xMid) + " -o " + quoted(dir / "x.png"));
   ASSERT_EQ(slice.exitCode, 0) << slice.err;
   EXPECT_NO_THROW(voxremesh::test::decodePng(readText(dir / "x.png")));
 }
@@ -376,7 +370,7 @@ TEST(CliVolume, VoxelizesTheRealWheel) {
   VOXREMESH_REQUIRE_SHARED_DECK(deck, "wheel.k");
   const fs::path dir = scratchDir("cli-volume-wheel");
   // No size: the mean edge length; the wheel's non-manifold T-junctions give several sheets.
-  const CliRun r = run("voxelize " + quoted(deck) + " -o " + quoted(dir / "wheel.vdb"));
+  const CliRun r = runCliSplit("voxelize " + quoted(deck) + " -o " + quoted(dir / "wheel.vdb"));
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_TRUE(contains(r.out, "part 1 (MC - rim - front- R), ")) << r.out;
   EXPECT_TRUE(contains(r.out, " sheets, ")) << r.out;
@@ -389,7 +383,7 @@ TEST(CliVolume, VoxelizesTheBirdStrikePlate) {
   VOXREMESH_REQUIRE_SHARED_DECK(deck, "bird.k");
   const fs::path dir = scratchDir("cli-volume-bird");
   // Part 1 is the shell plate; the SPH bird (part 101) has no shells and is not a choice.
-  const CliRun r = run("voxelize " + quoted(deck) + " -o " + quoted(dir / "bird.vdb"));
+  const CliRun r = runCliSplit("voxelize " + quoted(deck) + " -o " + quoted(dir / "bird.vdb"));
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_TRUE(contains(r.out, "part 1")) << r.out;
   const Json report = inspectJson(dir / "bird.vdb");

@@ -18,12 +18,15 @@
 
 #include "model/shell_edges.h"
 #include "support/json.h"
+#include "support/test_support.h"
 #include "voxremesh/errors.h"
 
 using namespace voxremesh;
 using model::BoundaryChain;
 using model::Index;
 using model::ShellEdges;
+using test::addNode;
+using test::addShell;
 using test::Json;
 using test::parseJson;
 
@@ -31,19 +34,6 @@ namespace {
 
 // ---------------------------------------------------------------------------------------------
 // Building models
-
-void addNode(FeModel& m, Id id, double x, double y, double z = 0.0) {
-  m.nodes.push_back(Node{id, {x, y, z}});
-}
-
-void addShell(FeModel& m, Id id, Id part, std::vector<Id> nodes) {
-  Shell s;
-  s.id = id;
-  s.part = part;
-  s.nodeCount = static_cast<std::uint8_t>(nodes.size());
-  for (std::size_t k = 0; k < nodes.size(); ++k) s.nodes[k] = nodes[k];
-  m.shells.push_back(s);
-}
 
 // A grid of nx x ny quads in the z = 0 plane with the given x and y node coordinates; node IDs
 // 1.. row by row, shell IDs 1.., all counter-clockwise (normal +z), part `part`.

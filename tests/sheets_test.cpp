@@ -23,6 +23,8 @@
 #include "voxremesh/io.h"
 
 using namespace voxremesh;
+using test::addNode;
+using test::addShell;
 
 namespace {
 
@@ -31,19 +33,6 @@ using Vec3 = std::array<double, 3>;
 
 // ---------------------------------------------------------------------------------------------
 // Building models
-
-void addNode(FeModel& m, Id id, double x, double y, double z = 0.0) {
-  m.nodes.push_back(Node{id, {x, y, z}});
-}
-
-void addShell(FeModel& m, Id id, Id part, std::vector<Id> nodes) {
-  Shell s;
-  s.id = id;
-  s.part = part;
-  s.nodeCount = static_cast<std::uint8_t>(nodes.size());
-  for (std::size_t k = 0; k < nodes.size(); ++k) s.nodes[k] = nodes[k];
-  m.shells.push_back(s);
-}
 
 Id nextShellId(const FeModel& m) {
   Id id = 0;

@@ -73,4 +73,31 @@ CliResult runCli(const std::string& args) {
   return result;
 }
 
+CliRun runCliSplit(const std::string& args) {
+  static int runs = 0;
+  const std::filesystem::path dir = scratchDir("cli-run-" + std::to_string(++runs));
+  const std::filesystem::path out = dir / "stdout", err = dir / "stderr";
+  // runCli appends "2>&1"; after "; exit $?" it applies to the exit only.
+  const CliResult result =
+      runCli(args + " >'" + out.string() + "' 2>'" + err.string() + "'; exit $?");
+  return {result.exitCode, readText(out), readText(err)};
+}
+
+std::string quoted(const std::filesystem::path& path) {
+  return "'" + path.string() + "'";
+}
+
+void addNode(FeModel& model, Id id, double x, double y, double z) {
+  model.nodes.push_back(Node{id, {x, y, z}});
+}
+
+void addShell(FeModel& model, Id id, Id part, const std::vector<Id>& nodes) {
+  Shell shell;
+  shell.id = id;
+  shell.part = part;
+  shell.nodeCount = static_cast<std::uint8_t>(nodes.size());
+  for (std::size_t k = 0; k < nodes.size() && k < 4; ++k) shell.nodes[k] = nodes[k];
+  model.shells.push_back(shell);
+}
+
 }  // namespace voxremesh::test

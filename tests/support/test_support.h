@@ -3,6 +3,9 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
+
+#include "voxremesh/fe_model.h"
 
 namespace voxremesh::test {
 
@@ -30,6 +33,25 @@ struct CliResult {
 
 /// Runs `voxremesh ARGS` (arguments are passed to /bin/sh as written) and captures its output.
 CliResult runCli(const std::string& args);
+
+/// Result of a CLI run with standard output and standard error kept apart.
+struct CliRun {
+  int exitCode = -1;
+  std::string out;
+  std::string err;
+};
+
+/// Runs `voxremesh ARGS` like runCli, keeping stdout and stderr apart.
+CliRun runCliSplit(const std::string& args);
+
+/// A path in single quotes, for the shell command lines of runCli.
+std::string quoted(const std::filesystem::path& path);
+
+/// Appends a node to a model under construction.
+void addNode(FeModel& model, Id id, double x, double y, double z = 0.0);
+
+/// Appends a shell (3 or 4 node IDs) of `part` to a model under construction.
+void addShell(FeModel& model, Id id, Id part, const std::vector<Id>& nodes);
 
 }  // namespace voxremesh::test
 
