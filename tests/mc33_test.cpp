@@ -1207,3 +1207,74 @@ TEST(Mc33Triangles, MoreLoopsPerComponentStayPlanarSurfaces) {
 }
 
 }  // namespace
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Timing (run with --gtest_also_run_disabled_tests)
+
+/// Times f over 10 million cells (the given set cycled) and prints ns per cell; returns a checksum
+/// so that the work cannot be optimised away.
+template <typename F>
+long timeCells(const char* what, const std::vector<CellValues>& cells, F f) {
+  constexpr long kCells = 10000000;
+  long checksum = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (long i = 0; i < kCells; ++i)
+    checksum += f(cells[static_cast<std::size_t>(i) % cells.size()]);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("%-52s %6.3f s for 10M cells, %5.1f ns per cell\n", what, seconds,
+              seconds * 1e9 / kCells);
+  return checksum;
+}
+
+TEST(Mc33Timing, DISABLED_TenMillionCells) {
+  std::mt19937 random(31);
+  std::uniform_real_distribution<float> uniform(-1.0F, 1.0F);
+  // Random values: every sign pattern, most cells with several loops and ambiguous faces.
+  std::vector<CellValues> randomCells(1 << 20);
+  for (auto& cell : randomCells) {
+    for (float& value : cell) value = uniform(random);
+  }
+  // Surface cells of a level set: a sphere's signed distance sampled on a grid (the common case).
+  std::vector<CellValues> sphereCells;
+  constexpr int kGrid = 160;
+  const auto distance = [](int i, int j, int k) {
+    const double x = i - 80.3;
+    const double y = j - 79.6;
+    const double z = k - 80.1;
+    return static_cast<float>(std::sqrt(x * x + y * y + z * z) - 70.0);
+  };
+  for (int k = 0; k < kGrid; ++k) {
+    for (int j = 0; j < kGrid; ++j) {
+      for (int i = 0; i < kGrid; ++i) {
+        CellValues cell;
+        for (int c = 0; c < kCornerCount; ++c) {
+          cell[c] = distance(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
+        }
+        const bool inside = std::all_of(cell.begin(), cell.end(), isNegative);
+        const bool outside = std::none_of(cell.begin(), cell.end(), isNegative);
+        if (!inside && !outside) sphereCells.push_back(cell);
+      }
+    }
+  }
+  long checksum = 0;
+  checksum += timeCells("cellTopology, uniform random values", randomCells,
+                        [](const CellValues& v) { return cellTopology(v).componentCount; });
+  checksum += timeCells("cellTopology, sphere surface cells", sphereCells,
+                        [](const CellValues& v) { return cellTopology(v).componentCount; });
+  checksum += timeCells("cellTopology + cellPoints, sphere surface cells", sphereCells,
+                        [](const CellValues& v) {
+                          const CellTopology t = cellTopology(v);
+                          return static_cast<long>(cellPoints(v, t).centroids[0][0] * 1000.0F);
+                        });
+  checksum += timeCells("cellTopology + cellPoints + cellTriangles, random values", randomCells,
+                        [](const CellValues& v) {
+                          const CellTopology t = cellTopology(v);
+                          return static_cast<long>(cellTriangles(t, cellPoints(v, t)).count);
+                        });
+  EXPECT_GT(checksum, 0);
+}
+
+}  // namespace

@@ -23,15 +23,19 @@ CellPoint edgePoint(const CellValues& values, int edge) noexcept {
 CellPoints cellPoints(const CellValues& values, const CellTopology& topology) noexcept {
   CellPoints points;
   std::array<int, kMaxComponents> counts{};
-  for (int e = 0; e < kEdgeCount; ++e) {
-    const int c = topology.edgeComponent[e];
-    if (c == kNoComponent) continue;
-    points.edgePoints[e] = edgePoint(values, e);
-    for (int k = 0; k < 3; ++k) points.centroids[c][k] += points.edgePoints[e][k];
-    ++counts[c];
+  for (int l = 0; l < topology.loopCount; ++l) {
+    const int c = topology.loopComponent[l];
+    counts[c] += topology.loopSize(l);
+    for (int i = topology.loopBegin[l]; i < topology.loopBegin[l + 1]; ++i) {
+      const int e = topology.loopEdges[i];
+      const CellPoint p = edgePoint(values, e);
+      points.edgePoints[e] = p;
+      for (int k = 0; k < 3; ++k) points.centroids[c][k] += p[k];
+    }
   }
   for (int c = 0; c < topology.componentCount; ++c) {
-    for (int k = 0; k < 3; ++k) points.centroids[c][k] /= static_cast<float>(counts[c]);
+    const float scale = 1.0F / static_cast<float>(counts[c]);
+    for (int k = 0; k < 3; ++k) points.centroids[c][k] *= scale;
   }
   return points;
 }

@@ -44,10 +44,19 @@
 //    AD - BC is a quadratic in t. Its maximum over the interval is at an end or at the vertex, and
 //    at an end it adds nothing (see sliceJoinsPair), so the test is: the quadratic is concave, its
 //    vertex lies inside the interval, and its value there is on the pair's side. The vertex is a
-//    body saddle of F seen along z. This decides the tunnels (MC33 cases 4, 6, 7, 10, 12, 13)
-//    without a table.
+//    body saddle of F seen along z. This decides the tunnels (MC33 cases 4, 6, 7, 10, 12, 13).
+//
+// Speed. The topology depends on the values only through the sign pattern, the decisions on the
+// pattern's ambiguous faces and the outcomes of the interior tests that could change the grouping.
+// So the derivation (steps 1-3 with the decisions given as bits, class Derivation) is run once, on
+// first use, for every sign pattern, every combination of its face decisions and every
+// combination of the interior tests that matter there, and the results are kept in immutable
+// tables (1,024 topologies in 656 decision cases, 41 kB). cellTopology then only takes the signs,
+// decides the ambiguous faces (exactly) and the relevant interior tests from the values, and
+// copies the tabled topology: no loops are traced and nothing is allocated per cell.
 #include <algorithm>
 #include <cstdint>
+#include <vector>
 
 #include "voxremesh/mc33.h"
 
@@ -55,17 +64,8 @@ namespace voxremesh::mc33 {
 
 namespace {
 
-/// Bit e set for the edges whose corners differ in sign, for a corner sign mask (bit c = corner c
-/// negative).
-std::uint16_t crossingEdges(unsigned negativeMask) {
-  std::uint16_t mask = 0;
-  for (int e = 0; e < kEdgeCount; ++e) {
-    const unsigned a = (negativeMask >> kEdgeCorners[e][0]) & 1U;
-    const unsigned b = (negativeMask >> kEdgeCorners[e][1]) & 1U;
-    mask = static_cast<std::uint16_t>(mask | ((a ^ b) << e));
-  }
-  return mask;
-}
+// ---------------------------------------------------------------------------------------------
+// Decisions from the values
 
 /// The asymptotic decider on a face with corner values v0..v3 in face order, negative corners on
 /// one diagonal and positive corners on the other: true when the negative corners are joined
@@ -133,15 +133,41 @@ bool sliceJoinsPair(const Linear& a, const Linear& d, const Linear& b, const Lin
   return positive ? saddleSide >= 0.0 : saddleSide > 0.0;
 }
 
+/// The z-edges' corners as (bottom, top), in the order of the slice square: (0,0), (1,0), (0,1),
+/// (1,1) in (x, y).
+constexpr std::array<std::array<std::uint8_t, 2>, 4> kZEdgeCorners = {
+    {{kEdgeCorners[8][0], kEdgeCorners[8][1]},
+     {kEdgeCorners[9][0], kEdgeCorners[9][1]},
+     {kEdgeCorners[10][0], kEdgeCorners[10][1]},
+     {kEdgeCorners[11][0], kEdgeCorners[11][1]}}};
+
+/// The diagonal pairs of z-edges (indices into kZEdgeCorners) followed by the other two.
+constexpr std::array<std::array<int, 4>, 2> kPairs = {{{0, 3, 1, 2}, {1, 2, 0, 3}}};
+
+/// Interior tests are numbered 2 * pair + sign (sign 0: negative, 1: positive).
+constexpr int kInteriorTests = 4;
+
+/// Evaluates interior test `test` on the values (sliceJoinsPair for its pair and sign).
+bool interiorJoins(const CellValues& values, int test) {
+  const auto& pair = kPairs[test / 2];
+  const bool positive = (test % 2) == 1;
+  const double sign = positive ? 1.0 : -1.0;
+  const auto line = [&](int zEdge, double s) {
+    return Linear{s * values[kZEdgeCorners[zEdge][0]], s * values[kZEdgeCorners[zEdge][1]]};
+  };
+  return sliceJoinsPair(line(pair[0], sign), line(pair[1], sign), line(pair[2], -sign),
+                        line(pair[3], -sign), positive);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Derivation of the topology from the decisions
+
 /// Union-find over the 8 corners.
 struct CornerClasses {
   std::array<std::uint8_t, kCornerCount> parent{0, 1, 2, 3, 4, 5, 6, 7};
 
   int find(int c) {
-    while (parent[c] != c) {
-      parent[c] = parent[parent[c]];
-      c = parent[c];
-    }
+    while (parent[c] != c) c = parent[c];
     return c;
   }
   void unite(int a, int b) {
@@ -151,43 +177,213 @@ struct CornerClasses {
   }
 };
 
-/// The z-edges' corners as (bottom, top), in the order of the slice square: (0,0), (1,0), (0,1),
-/// (1,1) in (x, y); diagonal pairs are {0, 3} and {1, 2} of this list.
-constexpr std::array<std::array<std::uint8_t, 2>, 4> kZEdgeCorners = {
-    {{kEdgeCorners[8][0], kEdgeCorners[8][1]},
-     {kEdgeCorners[9][0], kEdgeCorners[9][1]},
-     {kEdgeCorners[10][0], kEdgeCorners[10][1]},
-     {kEdgeCorners[11][0], kEdgeCorners[11][1]}}};
+/// Steps 1-3 of the derivation for one sign pattern and its face decisions.
+class Derivation {
+ public:
+  /// `faceJoinsNegatives`: bit f set when ambiguous face f joins its negative corners.
+  Derivation(unsigned negativeMask, unsigned faceJoinsNegatives) : mask_(negativeMask) {
+    if (mask_ == 0 || mask_ == 0xFFU) return;
+    traceLoops(faceJoinsNegatives);
+    // Step 2's surface relations: corners of one sign along edges and joined face diagonals.
+    for (const auto& edge : kEdgeCorners) {
+      if (negative(edge[0]) == negative(edge[1])) surface_.unite(edge[0], edge[1]);
+    }
+    for (int f = 0; f < kFaceCount; ++f) {
+      if (!ambiguous(f)) continue;
+      const auto& corners = kFaceCorners[f];
+      const bool joinsNegatives = ((faceJoinsNegatives >> f) & 1U) != 0U;
+      const int k = negative(corners[0]) == joinsNegatives ? 0 : 1;
+      surface_.unite(corners[k], corners[k + 2]);
+    }
+  }
 
-/// Joins, for both signs, diagonally opposite z-edges that some interior slice joins (step 3 of
-/// the derivation). Only pairs not yet in one class are tested.
-void joinThroughInterior(const CellValues& values, unsigned negativeMask, CornerClasses& classes) {
-  const auto corner = [&](int zEdge, bool negative) {
-    // A corner of the z-edge with the given sign, or -1.
-    for (const std::uint8_t c : kZEdgeCorners[zEdge]) {
-      if ((((negativeMask >> c) & 1U) != 0U) == negative) return static_cast<int>(c);
+  /// The interior tests that can change the grouping: the pattern has the pair of the test's sign
+  /// and the other pair of the other sign, the pair's corners are not yet in one region, and there
+  /// are at least two loops.
+  std::vector<int> relevantTests() const {
+    std::vector<int> tests;
+    if (topology_.loopCount < 2) return tests;
+    for (int test = 0; test < kInteriorTests; ++test) {
+      const int first = pairCorner(test, 0);
+      const int second = pairCorner(test, 1);
+      CornerClasses classes = surface_;
+      if (first >= 0 && second >= 0 && pairCorner(test, 2) >= 0 && pairCorner(test, 3) >= 0 &&
+          classes.find(first) != classes.find(second)) {
+        tests.push_back(test);
+      }
+    }
+    return tests;
+  }
+
+  /// The topology when the interior tests in `joined` (bit per test number) join their pairs.
+  CellTopology topology(unsigned joined) const {
+    CellTopology topology = topology_;
+    if (topology.loopCount == 0) return topology;
+    CornerClasses classes = surface_;
+    for (int test = 0; test < kInteriorTests; ++test) {
+      if (((joined >> test) & 1U) != 0U) classes.unite(pairCorner(test, 0), pairCorner(test, 1));
+    }
+    // Loops separating the same negative and positive regions are one component.
+    std::array<int, kMaxLoops> keys{};
+    int components = 0;
+    for (int l = 0; l < topology.loopCount; ++l) {
+      const auto& corners = kEdgeCorners[topology.loopEdge(l, 0)];
+      const bool firstNegative = negative(corners[0]);
+      const int negativeRegion = classes.find(firstNegative ? corners[0] : corners[1]);
+      const int positiveRegion = classes.find(firstNegative ? corners[1] : corners[0]);
+      keys[l] = negativeRegion * kCornerCount + positiveRegion;
+      int component = components;
+      for (int m = 0; m < l; ++m) {
+        if (keys[m] == keys[l]) {
+          component = topology.loopComponent[m];
+          break;
+        }
+      }
+      if (component == components) ++components;
+      topology.loopComponent[l] = static_cast<std::uint8_t>(component);
+    }
+    topology.componentCount = static_cast<std::uint8_t>(components);
+    for (int l = 0; l < topology.loopCount; ++l) {
+      for (int i = topology.loopBegin[l]; i < topology.loopBegin[l + 1]; ++i) {
+        topology.edgeComponent[topology.loopEdges[i]] =
+            static_cast<std::int8_t>(topology.loopComponent[l]);
+      }
+    }
+    return topology;
+  }
+
+ private:
+  bool negative(int c) const { return ((mask_ >> c) & 1U) != 0U; }
+
+  /// Negative-corner bits of face f in face order.
+  unsigned faceSigns(int f) const {
+    unsigned signs = 0;
+    for (int k = 0; k < 4; ++k) signs |= (negative(kFaceCorners[f][k]) ? 1U : 0U) << k;
+    return signs;
+  }
+  bool ambiguous(int f) const { return faceSigns(f) == 0x5U || faceSigns(f) == 0xAU; }
+
+  /// For interior test `test`: member k of its z-edge quadruple (pair, then the other two), the
+  /// corner of that z-edge with the test's sign (k < 2) or the other sign (k >= 2); -1 if none.
+  int pairCorner(int test, int k) const {
+    const bool wantNegative = ((test % 2) == 0) == (k < 2);
+    for (const std::uint8_t c : kZEdgeCorners[kPairs[test / 2][k]]) {
+      if (negative(c) == wantNegative) return c;
     }
     return -1;
-  };
-  const auto line = [&](int zEdge, double sign) {
-    return Linear{sign * values[kZEdgeCorners[zEdge][0]], sign * values[kZEdgeCorners[zEdge][1]]};
-  };
-  constexpr std::array<std::array<int, 4>, 2> kPairs = {{{0, 3, 1, 2}, {1, 2, 0, 3}}};
-  for (const auto& pair : kPairs) {
-    for (const bool negative : {true, false}) {
-      const int first = corner(pair[0], negative);
-      const int second = corner(pair[1], negative);
-      if (first < 0 || second < 0 || classes.find(first) == classes.find(second)) continue;
-      const int third = corner(pair[2], !negative);
-      const int fourth = corner(pair[3], !negative);
-      if (third < 0 || fourth < 0) continue;
-      const double sign = negative ? -1.0 : 1.0;
-      if (sliceJoinsPair(line(pair[0], sign), line(pair[1], sign), line(pair[2], -sign),
-                         line(pair[3], -sign), !negative)) {
-        classes.unite(first, second);
+  }
+
+  /// Step 1: the arcs of every face as "next edge", and their cycles, the loops (each started at
+  /// its smallest edge, in order of that edge).
+  void traceLoops(unsigned faceJoinsNegatives) {
+    std::array<std::uint8_t, kEdgeCount> next{};
+    unsigned crossing = 0;
+    for (int f = 0; f < kFaceCount; ++f) {
+      const unsigned signs = faceSigns(f);
+      const auto& edges = kFaceEdges[f];
+      const auto bit = [signs](int k) { return (signs >> (k & 3)) & 1U; };
+      for (int k = 0; k < 4; ++k) {
+        if (bit(k) == bit(k + 1)) continue;
+        crossing |= 1U << edges[k];
+        if (bit(k) != 0U) continue;  // leaving the negative part
+        // Entering: the arc runs to the leaving crossing; on an ambiguous face to the next one
+        // counter-clockwise when the negative corners are cut off, else to the previous one.
+        int to = k + 1;
+        if (ambiguous(f)) {
+          if (((faceJoinsNegatives >> f) & 1U) != 0U) to = k + 3;
+        } else {
+          while (bit(to) == 0U || bit(to + 1) != 0U) ++to;
+        }
+        next[edges[k]] = edges[to & 3];
+      }
+    }
+    unsigned visited = 0;
+    int size = 0;
+    int loops = 0;
+    for (int e = 0; e < kEdgeCount; ++e) {
+      if (((crossing >> e) & 1U) == 0U || ((visited >> e) & 1U) != 0U) continue;
+      topology_.loopBegin[loops] = static_cast<std::uint8_t>(size);
+      int edge = e;
+      do {
+        topology_.loopEdges[size++] = static_cast<std::uint8_t>(edge);
+        visited |= 1U << edge;
+        edge = next[edge];
+      } while (edge != e);
+      ++loops;
+    }
+    topology_.loopBegin[loops] = static_cast<std::uint8_t>(size);
+    topology_.loopCount = static_cast<std::uint8_t>(loops);
+  }
+
+  unsigned mask_;
+  CellTopology topology_;  // loops only
+  CornerClasses surface_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// The tables
+
+/// Per sign pattern: its ambiguous faces and where its decision cases start.
+struct PatternEntry {
+  std::uint16_t firstCase = 0;
+  std::uint8_t ambiguousCount = 0;
+  std::array<std::uint8_t, kFaceCount> ambiguousFaces{};
+};
+
+/// Per sign pattern and combination of its face decisions: the relevant interior tests and where
+/// the 2^tests topologies start.
+struct DecisionCase {
+  std::uint16_t firstTopology = 0;
+  std::uint8_t testCount = 0;
+  std::array<std::uint8_t, kInteriorTests> tests{};
+};
+
+struct Tables {
+  std::array<PatternEntry, 256> patterns;
+  std::vector<DecisionCase> cases;
+  std::vector<CellTopology> topologies;
+
+  Tables() {
+    for (unsigned mask = 0; mask < 256; ++mask) {
+      PatternEntry& pattern = patterns[mask];
+      pattern.firstCase = static_cast<std::uint16_t>(cases.size());
+      const Derivation signsOnly(mask, 0);
+      for (int f = 0; f < kFaceCount; ++f) {
+        unsigned signs = 0;
+        for (int k = 0; k < 4; ++k) signs |= ((mask >> kFaceCorners[f][k]) & 1U) << k;
+        if (signs == 0x5U || signs == 0xAU) {
+          pattern.ambiguousFaces[pattern.ambiguousCount++] = static_cast<std::uint8_t>(f);
+        }
+      }
+      for (unsigned bits = 0; bits < (1U << pattern.ambiguousCount); ++bits) {
+        unsigned faceJoins = 0;
+        for (int k = 0; k < pattern.ambiguousCount; ++k) {
+          faceJoins |= ((bits >> k) & 1U) << pattern.ambiguousFaces[k];
+        }
+        const Derivation derivation(mask, faceJoins);
+        const std::vector<int> tests = derivation.relevantTests();
+        DecisionCase decision;
+        decision.firstTopology = static_cast<std::uint16_t>(topologies.size());
+        decision.testCount = static_cast<std::uint8_t>(tests.size());
+        for (std::size_t k = 0; k < tests.size(); ++k) {
+          decision.tests[k] = static_cast<std::uint8_t>(tests[k]);
+        }
+        cases.push_back(decision);
+        for (unsigned outcomes = 0; outcomes < (1U << tests.size()); ++outcomes) {
+          unsigned joined = 0;
+          for (std::size_t k = 0; k < tests.size(); ++k) {
+            joined |= ((outcomes >> k) & 1U) << tests[k];
+          }
+          topologies.push_back(derivation.topology(joined));
+        }
       }
     }
   }
+};
+
+const Tables& tables() {
+  static const Tables kTables;
+  return kTables;
 }
 
 }  // namespace
@@ -207,110 +403,23 @@ int CellTopology::componentLoopCount(int c) const {
 }
 
 CellTopology cellTopology(const CellValues& values) noexcept {
-  CellTopology topology;
-  unsigned negativeMask = 0;
-  for (int c = 0; c < kCornerCount; ++c) negativeMask |= (values[c] < 0.0F ? 1U : 0U) << c;
-  if (negativeMask == 0 || negativeMask == 0xFFU) return topology;
-  const auto negative = [negativeMask](int c) { return ((negativeMask >> c) & 1U) != 0U; };
-
-  // Step 1: the arcs on the faces, as "next edge" along the loops.
-  std::array<std::uint8_t, kEdgeCount> next{};
-  unsigned ambiguousFaces = 0;
-  unsigned facesJoiningNegatives = 0;
-  for (int f = 0; f < kFaceCount; ++f) {
-    const auto& corners = kFaceCorners[f];
-    const auto& edges = kFaceEdges[f];
-    unsigned signs = 0;
-    for (int k = 0; k < 4; ++k) signs |= (negative(corners[k]) ? 1U : 0U) << k;
-    if (signs == 0 || signs == 0xFU) continue;
-    const auto enters = [signs](int k) {
-      return ((signs >> k) & 1U) == 0U && ((signs >> ((k + 1) & 3)) & 1U) != 0U;
-    };
-    if (signs == 0x5U || signs == 0xAU) {
-      ambiguousFaces |= 1U << f;
-      const bool joinsNegatives = faceJoinsNegatives(values[corners[0]], values[corners[1]],
-                                                     values[corners[2]], values[corners[3]]);
-      facesJoiningNegatives |= (joinsNegatives ? 1U : 0U) << f;
-      for (int k = 0; k < 4; ++k) {
-        if (enters(k)) next[edges[k]] = edges[(k + (joinsNegatives ? 3 : 1)) & 3];
-      }
-    } else {
-      int entering = 0;
-      int leaving = 0;
-      for (int k = 0; k < 4; ++k) {
-        if (enters(k)) entering = k;
-        if (((signs >> k) & 1U) != 0U && ((signs >> ((k + 1) & 3)) & 1U) == 0U) leaving = k;
-      }
-      next[edges[entering]] = edges[leaving];
-    }
+  unsigned mask = 0;
+  for (int c = 0; c < kCornerCount; ++c) mask |= (values[c] < 0.0F ? 1U : 0U) << c;
+  const Tables& t = tables();
+  const PatternEntry& pattern = t.patterns[mask];
+  unsigned faceBits = 0;
+  for (int k = 0; k < pattern.ambiguousCount; ++k) {
+    const auto& corners = kFaceCorners[pattern.ambiguousFaces[k]];
+    const bool joins = faceJoinsNegatives(values[corners[0]], values[corners[1]],
+                                          values[corners[2]], values[corners[3]]);
+    faceBits |= (joins ? 1U : 0U) << k;
   }
-
-  // The loops: cycles of `next`, each started at its smallest edge, in order of that edge.
-  const unsigned crossing = crossingEdges(negativeMask);
-  unsigned visited = 0;
-  int size = 0;
-  int loops = 0;
-  for (int e = 0; e < kEdgeCount; ++e) {
-    if (((crossing >> e) & 1U) == 0U || ((visited >> e) & 1U) != 0U) continue;
-    topology.loopBegin[loops] = static_cast<std::uint8_t>(size);
-    int edge = e;
-    do {
-      topology.loopEdges[size++] = static_cast<std::uint8_t>(edge);
-      visited |= 1U << edge;
-      edge = next[edge];
-    } while (edge != e && size < kEdgeCount);
-    ++loops;
+  const DecisionCase& decision = t.cases[pattern.firstCase + faceBits];
+  unsigned outcomes = 0;
+  for (int k = 0; k < decision.testCount; ++k) {
+    outcomes |= (interiorJoins(values, decision.tests[k]) ? 1U : 0U) << k;
   }
-  topology.loopBegin[loops] = static_cast<std::uint8_t>(size);
-  topology.loopCount = static_cast<std::uint8_t>(loops);
-
-  // Steps 2 and 3: loops separating the same pair of 3D regions are one component. One loop is
-  // one component; with more, classify the corners into regions.
-  if (loops == 1) {
-    topology.componentCount = 1;
-    topology.loopComponent[0] = 0;
-  } else {
-    CornerClasses classes;
-    for (const auto& edge : kEdgeCorners) {
-      if (negative(edge[0]) == negative(edge[1])) classes.unite(edge[0], edge[1]);
-    }
-    for (int f = 0; f < kFaceCount; ++f) {
-      if (((ambiguousFaces >> f) & 1U) == 0U) continue;
-      const auto& corners = kFaceCorners[f];
-      // The joined diagonal: the negative one or the positive one.
-      const bool joinsNegatives = ((facesJoiningNegatives >> f) & 1U) != 0U;
-      const int k = negative(corners[0]) == joinsNegatives ? 0 : 1;
-      classes.unite(corners[k], corners[k + 2]);
-    }
-    joinThroughInterior(values, negativeMask, classes);
-
-    std::array<int, kMaxLoops> keys{};
-    int components = 0;
-    for (int l = 0; l < loops; ++l) {
-      const auto& corners = kEdgeCorners[topology.loopEdge(l, 0)];
-      const bool firstNegative = negative(corners[0]);
-      const int negativeClass = classes.find(firstNegative ? corners[0] : corners[1]);
-      const int positiveClass = classes.find(firstNegative ? corners[1] : corners[0]);
-      keys[l] = negativeClass * kCornerCount + positiveClass;
-      int component = components;
-      for (int m = 0; m < l; ++m) {
-        if (keys[m] == keys[l]) {
-          component = topology.loopComponent[m];
-          break;
-        }
-      }
-      if (component == components) ++components;
-      topology.loopComponent[l] = static_cast<std::uint8_t>(component);
-    }
-    topology.componentCount = static_cast<std::uint8_t>(components);
-  }
-  for (int l = 0; l < loops; ++l) {
-    for (int i = topology.loopBegin[l]; i < topology.loopBegin[l + 1]; ++i) {
-      topology.edgeComponent[topology.loopEdges[i]] =
-          static_cast<std::int8_t>(topology.loopComponent[l]);
-    }
-  }
-  return topology;
+  return t.topologies[decision.firstTopology + outcomes];
 }
 
 }  // namespace voxremesh::mc33
