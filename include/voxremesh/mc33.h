@@ -17,12 +17,12 @@
 // - Faces (kFaceCorners, kFaceEdges): face 2a + s is the face where axis a has coordinate s: 0 x=0,
 //   1 x=1, 2 y=0, 3 y=1, 4 z=0, 5 z=1. Its corners are listed counter-clockwise seen from outside
 //   the cell; face edge k joins face corners k and k+1 (mod 4).
-// - Sign: a corner is inside (negative) when its value is < 0; a value exactly 0 counts as
-// positive.
-//   The same tie rule holds for every decision: a face or interior saddle whose value is exactly 0
-//   joins the positive corners. In other words the topology is that of the level set F = -e for an
-//   infinitesimally small e > 0. All face decisions are exact (no rounding), so two cells that
-//   share a face (the same 4 values) always decide it the same way: no cracks.
+// - Sign: a corner is inside (negative) when its value is < 0; a value exactly 0 (also -0)
+//   counts as positive. The same tie rule holds for the face decisions: a face saddle whose value
+//   is exactly 0 joins the positive corners (and so does an interior saddle at 0, up to rounding).
+//   In other words the topology is that of the level set F = -e for an infinitesimally small
+//   e > 0. All face decisions are exact (no rounding), so two cells that share a face (the same 4
+//   values) always decide it the same way: no cracks.
 // - Components: the connected pieces of {F = 0} inside the closed cell, F the trilinear interpolant
 //   of the corner values. Each meets the cell's faces in one or more closed loops of edge crossing
 //   points (a disk has one loop, a tunnel two). Components, loops and the edges inside a loop are

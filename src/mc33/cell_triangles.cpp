@@ -1,9 +1,9 @@
 // Triangulation of a cell's isosurface components (include/voxremesh/mc33.h).
 //
 // A disk is triangulated over its loop's points, except where the loop runs along one face twice
-// (a face whose two arcs belong to the same loop, MC33's saddle-shaped polygons such as cases 3.2,
-// 6.2, 7.3, 10.2, 12.2, 12.3 and 13): a fan from one of its points could have all three points on
-// that face or fold over, so the fan is centred on the interior vertex instead. A tunnel is a band
+// (both arcs of an ambiguous face in the same loop: a saddle-shaped polygon such as the hexagon of
+// MC33 case 3.2): a fan from one of its points could have all three points on that face or fold
+// over, so the fan is centred on the interior vertex instead. A tunnel is a band
 // zipping its two loops. Loops are oriented as the boundary of their component (normal towards
 // the positive side), and every triangle holds each of its loop edges in the loop's direction, so
 // the triangles are oriented consistently with the loops.
@@ -21,8 +21,9 @@ namespace {
 constexpr std::array<std::uint8_t, kEdgeCount> kEdgeFaces = [] {
   std::array<std::uint8_t, kEdgeCount> faces{};
   for (int f = 0; f < kFaceCount; ++f) {
-    for (const std::uint8_t e : kFaceEdges[f])
+    for (const std::uint8_t e : kFaceEdges[f]) {
       faces[e] = static_cast<std::uint8_t>(faces[e] | (1U << f));
+    }
   }
   return faces;
 }();
