@@ -10,6 +10,7 @@
 
 #include "io/atomic_file.h"
 #include "io/formats.h"
+#include "support/expect_input_error.h"
 #include "support/test_support.h"
 #include "voxremesh/errors.h"
 
@@ -18,23 +19,13 @@ using namespace voxremesh;
 
 namespace {
 
+using voxremesh::test::expectInputError;
+
 fs::path put(const fs::path& dir, const std::string& name, const std::string& content) {
   const fs::path path = dir / name;
   fs::create_directories(path.parent_path());
   io::writeFileAtomically(path, content);
   return path;
-}
-
-void expectInputError(const std::function<void()>& read, const fs::path& file, std::size_t line,
-                      const std::string& fragment) {
-  try {
-    read();
-    ADD_FAILURE() << "no InputError for " << file << " (expected: " << fragment << ")";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), file.string()) << e.what();
-    EXPECT_EQ(e.line(), line) << e.what();
-    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-  }
 }
 
 bool hasWarning(const Warnings& warnings, const std::string& fragment) {

@@ -16,6 +16,7 @@
 #include "io/formats.h"
 #include "io/nastran_cards.h"
 #include "io/text_scan.h"
+#include "support/expect_input_error.h"
 #include "support/test_support.h"
 #include "voxremesh/errors.h"
 
@@ -23,6 +24,8 @@ namespace fs = std::filesystem;
 using namespace voxremesh;
 
 namespace {
+
+using voxremesh::test::expectInputError;
 
 /// A small-field line: each field left-justified in 8 columns (the 10th is the marker).
 std::string small(std::initializer_list<std::string_view> fields) {
@@ -94,19 +97,6 @@ const ShellExtras& extrasOf(const FeModel& model, Id id) {
 
 const std::string& typeOf(const FeModel& model, Id id) {
   return model.shellTypes.at(shell(model, id).type);
-}
-
-/// Expects `action` to throw InputError naming `file` and `line` with `text` in its message.
-void expectInputError(const std::function<void()>& action, const fs::path& file, std::size_t line,
-                      const std::string& text) {
-  try {
-    action();
-    ADD_FAILURE() << "no InputError (expected '" << text << "')";
-  } catch (const InputError& error) {
-    EXPECT_EQ(error.file(), file.string()) << error.what();
-    EXPECT_EQ(error.line(), line) << error.what();
-    EXPECT_NE(std::string(error.what()).find(text), std::string::npos) << error.what();
-  }
 }
 
 /// A unit square of 2x1 quads plus a triangle, in small field, with a header and a property.

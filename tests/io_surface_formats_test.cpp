@@ -12,6 +12,7 @@
 
 #include "io/atomic_file.h"
 #include "io/formats.h"
+#include "support/expect_input_error.h"
 #include "support/test_support.h"
 #include "voxremesh/errors.h"
 
@@ -19,6 +20,8 @@ namespace fs = std::filesystem;
 using namespace voxremesh;
 
 namespace {
+
+using voxremesh::test::expectInputError;
 
 constexpr int kNx = 4;
 constexpr int kNy = 3;
@@ -140,19 +143,6 @@ fs::path put(const fs::path& dir, const std::string& name, const std::string& co
   const fs::path path = dir / name;
   io::writeFileAtomically(path, content);
   return path;
-}
-
-/// Runs `read` and checks that it throws InputError with this file, line and message fragment.
-void expectInputError(const std::function<void()>& read, const fs::path& file, std::size_t line,
-                      const std::string& fragment) {
-  try {
-    read();
-    ADD_FAILURE() << "no InputError for " << file << " (expected: " << fragment << ")";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), file.string()) << e.what();
-    EXPECT_EQ(e.line(), line) << e.what();
-    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-  }
 }
 
 void expectElementIdsOneToM(const FeModel& m) {
