@@ -63,47 +63,37 @@ bool isIntegral(Type type) {
   return type != Type::Float32 && type != Type::Float64;
 }
 
-double readReal(Type type, const char* p, bool little) {
+/// Reads one binary value of `type` at `p` and converts it to Out.
+template <typename Out>
+Out readAs(Type type, const char* p, bool little) {
   switch (type) {
     case Type::Int8:
-      return surface::readBytes<std::int8_t>(p, little);
+      return static_cast<Out>(surface::readBytes<std::int8_t>(p, little));
     case Type::UInt8:
-      return surface::readBytes<std::uint8_t>(p, little);
+      return static_cast<Out>(surface::readBytes<std::uint8_t>(p, little));
     case Type::Int16:
-      return surface::readBytes<std::int16_t>(p, little);
+      return static_cast<Out>(surface::readBytes<std::int16_t>(p, little));
     case Type::UInt16:
-      return surface::readBytes<std::uint16_t>(p, little);
+      return static_cast<Out>(surface::readBytes<std::uint16_t>(p, little));
     case Type::Int32:
-      return surface::readBytes<std::int32_t>(p, little);
+      return static_cast<Out>(surface::readBytes<std::int32_t>(p, little));
     case Type::UInt32:
-      return surface::readBytes<std::uint32_t>(p, little);
+      return static_cast<Out>(surface::readBytes<std::uint32_t>(p, little));
     case Type::Float32:
-      return surface::readBytes<float>(p, little);
+      return static_cast<Out>(surface::readBytes<float>(p, little));
     case Type::Float64:
-      return surface::readBytes<double>(p, little);
+      return static_cast<Out>(surface::readBytes<double>(p, little));
   }
-  return 0;
+  return Out{};
 }
 
+double readReal(Type type, const char* p, bool little) {
+  return readAs<double>(type, p, little);
+}
+
+/// An integer value; 0 for a real type (callers check isIntegral where it matters).
 std::int64_t readInteger(Type type, const char* p, bool little) {
-  switch (type) {
-    case Type::Int8:
-      return surface::readBytes<std::int8_t>(p, little);
-    case Type::UInt8:
-      return surface::readBytes<std::uint8_t>(p, little);
-    case Type::Int16:
-      return surface::readBytes<std::int16_t>(p, little);
-    case Type::UInt16:
-      return surface::readBytes<std::uint16_t>(p, little);
-    case Type::Int32:
-      return surface::readBytes<std::int32_t>(p, little);
-    case Type::UInt32:
-      return surface::readBytes<std::uint32_t>(p, little);
-    case Type::Float32:
-    case Type::Float64:
-      break;
-  }
-  return 0;
+  return isIntegral(type) ? readAs<std::int64_t>(type, p, little) : 0;
 }
 
 struct Property {
