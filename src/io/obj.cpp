@@ -175,12 +175,7 @@ void writeObj(const FeModel& model, std::string& out, Warnings& warnings) {
       started = true;
     }
     out += 'f';
-    for (int k = 0; k < shell.nodeCount; ++k) {
-      out += ' ';
-      surface::appendInt(
-          out, static_cast<std::int64_t>(
-                   indexer.index(shell.nodes[static_cast<std::size_t>(k)], shell.id) + 1));
-    }
+    indexer.appendCorners(out, shell, 1);
     out += '\n';
   }
 }

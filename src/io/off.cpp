@@ -160,11 +160,7 @@ void writeOff(const FeModel& model, std::string& out, Warnings& warnings) {
   }
   for (const Shell& shell : model.shells) {
     out += shell.nodeCount == 3 ? '3' : '4';
-    for (int k = 0; k < shell.nodeCount; ++k) {
-      out += ' ';
-      surface::appendInt(out, static_cast<std::int64_t>(indexer.index(
-                                  shell.nodes[static_cast<std::size_t>(k)], shell.id)));
-    }
+    indexer.appendCorners(out, shell);
     out += '\n';
   }
 }

@@ -535,11 +535,7 @@ void writePly(const FeModel& model, std::string& out, bool binary, Warnings& war
   }
   for (const Shell& shell : model.shells) {
     out += shell.nodeCount == 3 ? '3' : '4';
-    for (int k = 0; k < shell.nodeCount; ++k) {
-      out += ' ';
-      surface::appendInt(out, static_cast<std::int64_t>(indexer.index(
-                                  shell.nodes[static_cast<std::size_t>(k)], shell.id)));
-    }
+    indexer.appendCorners(out, shell);
     out += ' ';
     surface::appendInt(out, partValue.at(shell.part));
     out += '\n';

@@ -275,6 +275,17 @@ class NodeIndexer {
     }
   }
 
+  /// Appends " i j k [l]": the vertex indices of the shell's corners, counted from `base`.
+  /// Throws like index() for a corner that names a missing node.
+  void appendCorners(std::string& out, const Shell& shell, std::int64_t base = 0) const {
+    for (int c = 0; c < shell.nodeCount; ++c) {
+      out += ' ';
+      appendInt(out, static_cast<std::int64_t>(
+                         index(shell.nodes[static_cast<std::size_t>(c)], shell.id)) +
+                         base);
+    }
+  }
+
   /// The 0-based index of node `id`.
   /// Throws std::invalid_argument naming the element when the node does not exist.
   std::size_t index(Id id, Id element) const {
