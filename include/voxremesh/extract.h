@@ -1,0 +1,63 @@
+// The extraction stage: from a Volume to a quad-dominant surface mesh (Bidmon et al., Sect. 4).
+//
+// Dual quads. For every cell of the sdf grid (the cube whose lowest corner is voxel (i,j,k)) whose
+// eight corners are active, valid (not in the invalid mask) and not all of one sign, MC33
+// (mc33.h) decides the surface components inside the cell; each component loop gets one vertex,
+// the mean of its edge crossing points. (A component with two loops, an MC33 tunnel, gets one
+// vertex per loop: a single vertex would make the mesh non-manifold there; the face decisions,
+// and so the absence of cracks, are unchanged, and the interior ambiguity is resolved without
+// the tunnel.) For every grid edge whose two voxels differ in sign and whose four surrounding
+// cells all have vertices, one quad joins the vertices of the four cells that hold that edge's
+// crossing, counter-clockwise seen from the positive side. Cells crossed by a boundary loop of the
+// volume (closed cube) get no vertex either, so that the mesh stops short of every boundary,
+// holes of one element included.
+//
+// The work runs over the active leaves of the sdf with TBB (tree::LeafManager; counts, prefix
+// sums, fill), like OpenVDB's VolumeToMesh; the output does not depend on the thread count.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "voxremesh/quad_mesh.h"
+#include "voxremesh/volume.h"
+
+namespace voxremesh {
+
+/// Settings of the extraction stage.
+struct ExtractSettings {
+  /// Rebuild the strip between the dual mesh and the volume's boundary loops (paper Fig. 7).
+  bool rebuildBoundary = true;
+  /// Move the vertices of cells marked in the feature mask onto the feature lines and points.
+  bool snapFeatures = true;
+};
+
+/// What the extraction did, for reports and tests.
+struct ExtractStats {
+  std::uint64_t surfaceCells = 0;   ///< valid cells with at least one component
+  std::uint64_t tunnelCells = 0;    ///< cells with an MC33 tunnel (split into one vertex per loop)
+  std::uint64_t skippedCells = 0;   ///< sign-changing cells left out (invalid, inactive, boundary)
+  std::uint64_t dualVertices = 0;   ///< vertices of the dual mesh
+  std::uint64_t dualQuads = 0;      ///< quads of the dual mesh
+  std::uint64_t stripQuads = 0;     ///< quads of the rebuilt boundary strip
+  std::uint64_t stripTriangles = 0; ///< triangles of the rebuilt boundary strip
+  std::uint64_t snappedVertices = 0;  ///< vertices moved onto feature lines or points
+};
+
+/// Extracts the quad mesh of a volume (see the top of the file).
+/// @param volume    a non-empty volume (buildVolume or readVolume)
+/// @param settings  see ExtractSettings
+/// @param stats     when not null, receives the counts of ExtractStats
+/// @return the mesh in world coordinates; points on boundary loops, feature lines and feature
+///         points carry their constraints, and curves holds the volume's curves
+/// Throws std::invalid_argument for an empty volume; std::runtime_error when the boundary strip
+/// cannot be rebuilt (naming the loop).
+QuadMesh extractQuadMesh(const Volume& volume, const ExtractSettings& settings = {},
+                         ExtractStats* stats = nullptr);
+
+/// The MC33 triangulation of the same valid cells (mc33::cellTriangles), for inspection and
+/// comparison: crossing points shared between neighbouring cells, every point free.
+/// Throws std::invalid_argument for an empty volume.
+QuadMesh extractTriangles(const Volume& volume);
+
+}  // namespace voxremesh
