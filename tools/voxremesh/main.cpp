@@ -27,6 +27,8 @@ constexpr Command kCommands[] = {
      voxremesh::cli::runInspect},
     {"slice", "render one axis-aligned slice of a .vdb volume as a PNG image",
      voxremesh::cli::runSlice},
+    {"extract", "extract the quad mesh (or MC33 triangles) of a .vdb volume",
+     voxremesh::cli::runExtract},
 };
 
 const char* const kUsage = "voxremesh COMMAND [options]  (see voxremesh --help)";
