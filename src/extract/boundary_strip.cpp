@@ -21,7 +21,7 @@ Vec3d toVec(const std::array<double, 3>& p) {
   return Vec3d(p[0], p[1], p[2]);
 }
 
-/// Union-find over point indices.
+/// Union-find over indices.
 struct Components {
   std::vector<std::uint32_t> parent;
   explicit Components(std::size_t n) : parent(n) {
@@ -38,8 +38,16 @@ struct Components {
   }
 };
 
-/// The closed boundary loops of the mesh (point indices, mesh on the left).
-std::vector<std::vector<std::uint32_t>> dualBoundaryLoops(const QuadMesh& mesh) {
+/// The closed boundary loops of the mesh (point indices, mesh on the left), and for every face
+/// its piece: faces joined across shared edges (a face touching the rest at a corner only is a
+/// piece of its own).
+struct DualBoundary {
+  std::vector<std::vector<std::uint32_t>> loops;
+  std::vector<std::uint32_t> loopFace;  ///< a face on each loop
+  std::vector<std::uint32_t> piece;     ///< per face: the lowest face of its piece
+};
+
+DualBoundary dualBoundary(const QuadMesh& mesh) {
   std::vector<model::ShellCorners> corners(mesh.faces.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     corners[f].count = static_cast<std::uint8_t>(cornerCount(mesh.faces[f]));
@@ -47,12 +55,21 @@ std::vector<std::vector<std::uint32_t>> dualBoundaryLoops(const QuadMesh& mesh) 
       corners[f].node[std::size_t(c)] = mesh.faces[f][std::size_t(c)];
   }
   const model::ShellEdges adjacency(corners);
-  std::vector<std::vector<std::uint32_t>> loops;
+  DualBoundary result;
   for (const model::BoundaryChain& chain : model::boundaryChains(adjacency)) {
     if (!chain.closed) throw std::runtime_error("extraction: the dual mesh is not edge-manifold");
-    loops.push_back(chain.nodes);
+    result.loops.push_back(chain.nodes);
+    result.loopFace.push_back(adjacency.incidences(chain.edges.front())[0].shell);
   }
-  return loops;
+  Components pieces(mesh.faces.size());
+  for (std::size_t e = 0; e < adjacency.edgeCount(); ++e) {
+    const auto incidences = adjacency.incidences(model::Index(e));
+    for (std::size_t i = 1; i < incidences.size(); ++i)
+      pieces.unite(incidences[0].shell, incidences[i].shell);
+  }
+  result.piece.resize(mesh.faces.size());
+  for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) result.piece[f] = pieces.find(f);
+  return result;
 }
 
 std::string describePoint(const Vec3d& p) {
@@ -165,8 +182,36 @@ struct OuterNode {
 };
 
 /// Builds the strip between dual loop `dual` (point indices) and original loop `loop`.
+/// Arc lengths of loop vertices strictly between s0 and s1 (s0 < s1, both may exceed the length)
+/// that lie farther than `tolerance` from the chord between the points at s0 and s1, chosen
+/// farthest first and recursively (Douglas-Peucker), so that the chords pass every loop vertex
+/// within the tolerance.
+void addFarVertices(const PolylineParam& loop, double s0, double s1, double tolerance,
+                    std::vector<double>& out) {
+  const double length = loop.length();
+  const Vec3d a = loop.pointAt(s0), b = loop.pointAt(s1);
+  double worst = tolerance;
+  double worstParam = -1.0;
+  const std::size_t n = loop.pointCount();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (double wrap : {0.0, length}) {
+      const double v = loop.vertexParam(i) + wrap;
+      if (v <= s0 || v >= s1) continue;
+      const Vec3d ab = b - a, p = loop.point(i);
+      const double len2 = ab.lengthSqr();
+      const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+      const double d = (a + ab * t - p).length();
+      if (d > worst) worst = d, worstParam = v;
+    }
+  }
+  if (worstParam < 0.0) return;
+  addFarVertices(loop, s0, worstParam, tolerance, out);
+  out.push_back(worstParam);
+  addFarVertices(loop, worstParam, s1, tolerance, out);
+}
+
 void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
-                const TargetLoop& target, StripStats& stats) {
+                const TargetLoop& target, double tolerance, StripStats& stats) {
   const PolylineParam loop(target.points, true);
   const std::vector<double>& cornerParams = target.cornerParams;
   const std::size_t m = dualLoop.size();
@@ -237,6 +282,24 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
   for (const OuterNode& e : extra) nodes.push_back(e);
   std::stable_sort(nodes.begin(), nodes.end(),
                    [](const OuterNode& x, const OuterNode& y) { return x.param < y.param; });
+  // Where a chord between consecutive nodes misses a vertex of the loop by more than the
+  // tolerance (a narrow tab the dual mesh could not enter), that vertex becomes a node too.
+  {
+    std::vector<double> far;
+    for (std::size_t j = 0; j < nodes.size(); ++j) {
+      const double s0 = nodes[j].param + base;
+      const double s1 =
+          (j + 1 < nodes.size() ? nodes[j + 1].param : nodes[0].param + length) + base;
+      addFarVertices(loop, s0, s1, tolerance, far);
+    }
+    for (double v : far) {
+      double c = std::fmod(v - base, length);
+      if (c < 0.0) c += length;
+      nodes.push_back({c, std::numeric_limits<std::size_t>::max(), false});
+    }
+    std::stable_sort(nodes.begin(), nodes.end(),
+                     [](const OuterNode& x, const OuterNode& y) { return x.param < y.param; });
+  }
   // Node 0 must pair with dual vertex 0 (param 0, or a corner moved there).
   const auto first = std::find_if(nodes.begin(), nodes.end(),
                                   [](const OuterNode& node) { return node.fromDual == 0; });
@@ -245,10 +308,15 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
   const std::size_t n = nodes.size();
   std::vector<std::uint32_t> b(n);
   for (std::size_t j = 0; j < n; ++j) {
-    const Vec3d p = loop.pointAt(nodes[j].param + base);
+    Vec3d p = loop.pointAt(nodes[j].param + base);
     double v = std::fmod(nodes[j].param + base, length);
     if (v < 0.0) v += length;
     std::size_t segment = target.segmentAt(loop, v);
+    // A node at a vertex of the loop (a corner, a bridge end) takes its exact coordinates, so
+    // that the two visits of a bridge end become one node when the mesh is welded.
+    for (std::size_t end : {segment, (segment + 1) % target.points.size()}) {
+      if ((p - loop.point(end)).length() <= 1e-9 * length) p = loop.point(end);
+    }
     if (target.segmentCurve[segment] == kNoCurve)  // a bridge end: take the loop's curve
       segment = (segment + (v - loop.vertexParam(segment) < loop.vertexParam(segment + 1) - v
                                 ? target.points.size() - 1
@@ -287,12 +355,14 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
 }  // namespace
 
 StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& loopCurves,
-                                const std::vector<std::array<double, 3>>& corners) {
+                                const std::vector<std::array<double, 3>>& corners,
+                                double tolerance) {
   StripStats stats;
   if (mesh.constraints.size() != mesh.points.size()) mesh.constraints.resize(mesh.points.size());
   std::vector<PolylineParam> loops;
   for (std::uint32_t c : loopCurves) loops.emplace_back(mesh.curves[c].points, true);
-  const std::vector<std::vector<std::uint32_t>> dualLoops = dualBoundaryLoops(mesh);
+  const DualBoundary boundary = dualBoundary(mesh);
+  const std::vector<std::vector<std::uint32_t>>& dualLoops = boundary.loops;
 
   // Votes: for every dual loop, how many of its vertices are closest to each original loop.
   std::vector<std::vector<std::size_t>> votes(dualLoops.size(),
@@ -330,12 +400,9 @@ StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>
   for (std::size_t l = 0; l < loops.size(); ++l) loopsOfDual[taken[l]].push_back(loopCurves[l]);
 
   // Remove stray pieces: components with a boundary of which no loop was taken.
-  Components components(mesh.points.size());
-  for (const auto& face : mesh.faces)
-    for (int c = 1; c < cornerCount(face); ++c) components.unite(face[0], face[std::size_t(c)]);
-  std::vector<char> keepsLoop(mesh.points.size(), 0), hasBoundary(mesh.points.size(), 0);
+  std::vector<char> keepsLoop(mesh.faces.size(), 0), hasBoundary(mesh.faces.size(), 0);
   for (std::size_t d = 0; d < dualLoops.size(); ++d) {
-    const std::uint32_t root = components.find(dualLoops[d].front());
+    const std::uint32_t root = boundary.piece[boundary.loopFace[d]];
     hasBoundary[root] = 1;
     if (!loopsOfDual[d].empty()) keepsLoop[root] = 1;
   }
@@ -344,7 +411,7 @@ StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>
   // last when the loop is odd), oriented like the mesh.
   std::vector<std::array<CornerIndex, 4>> patches;
   for (std::size_t d = 0; d < dualLoops.size(); ++d) {
-    const std::uint32_t root = components.find(dualLoops[d].front());
+    const std::uint32_t root = boundary.piece[boundary.loopFace[d]];
     if (!keepsLoop[root] || !loopsOfDual[d].empty()) continue;
     std::vector<std::uint32_t> hole(dualLoops[d].rbegin(), dualLoops[d].rend());
     for (std::size_t i = 1; i + 1 < hole.size(); i += 2) {
@@ -358,18 +425,18 @@ StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>
     }
   }
   const std::size_t before = mesh.faces.size();
-  mesh.faces.erase(std::remove_if(mesh.faces.begin(), mesh.faces.end(),
-                                  [&](const std::array<CornerIndex, 4>& face) {
-                                    const std::uint32_t root = components.find(face[0]);
-                                    return hasBoundary[root] && !keepsLoop[root];
-                                  }),
-                   mesh.faces.end());
+  std::size_t kept = 0;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const std::uint32_t root = boundary.piece[f];
+    if (!hasBoundary[root] || keepsLoop[root]) mesh.faces[kept++] = mesh.faces[f];
+  }
+  mesh.faces.resize(kept);
   stats.removedFaces = before - mesh.faces.size();
   mesh.faces.insert(mesh.faces.end(), patches.begin(), patches.end());
 
   for (std::size_t d = 0; d < dualLoops.size(); ++d) {
     if (loopsOfDual[d].empty()) continue;
-    buildStrip(mesh, dualLoops[d], joinLoops(mesh, loopsOfDual[d], corners), stats);
+    buildStrip(mesh, dualLoops[d], joinLoops(mesh, loopsOfDual[d], corners), tolerance, stats);
   }
   return stats;
 }

@@ -34,6 +34,8 @@ struct StripStats {
 ///                    mesh on their left, as the original loops do)
 /// @param loopCurves  the indices into mesh.curves of the original boundary loops (closed)
 /// @param corners     feature points; those equal to a vertex of a loop are its corners
+/// @param tolerance   where the chord between two strip nodes misses a vertex of the loop by
+///                    more than this, the vertex becomes a node too (with a triangle)
 /// A boundary loop of a kept piece that no original loop takes is a gap inside the surface and is
 /// closed by a fan of quads. Where one dual loop takes several original loops (the dual mesh could
 /// not pass between two holes, or a hole and the outer contour), they are joined by bridges at
@@ -41,6 +43,7 @@ struct StripStats {
 /// Throws std::runtime_error naming the loop (index and a point of it) when an original loop has
 /// no dual loop to join.
 StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& loopCurves,
-                                const std::vector<std::array<double, 3>>& corners);
+                                const std::vector<std::array<double, 3>>& corners,
+                                double tolerance);
 
 }  // namespace voxremesh::extract

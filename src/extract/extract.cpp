@@ -40,9 +40,8 @@ void removeUnusedPoints(QuadMesh& mesh) {
 std::uint64_t weldCoincidentPoints(QuadMesh& mesh) {
   std::vector<CornerIndex> order(mesh.points.size());
   for (CornerIndex i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](CornerIndex a, CornerIndex b) {
-    return mesh.points[a] < mesh.points[b];
-  });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](CornerIndex a, CornerIndex b) { return mesh.points[a] < mesh.points[b]; });
   std::vector<CornerIndex> representative(mesh.points.size());
   for (std::size_t k = 0; k < order.size(); ++k) {
     const bool same = k > 0 && mesh.points[order[k]] == mesh.points[order[k - 1]];
@@ -121,8 +120,8 @@ QuadMesh extractQuadMesh(const Volume& volume, const ExtractSettings& settings,
                                 lineCurves, volume.featurePoints());
   }
   if (rebuild) {
-    const extract::StripStats strip =
-        extract::rebuildBoundaryStrip(mesh, loopCurves, volume.featurePoints());
+    const extract::StripStats strip = extract::rebuildBoundaryStrip(
+        mesh, loopCurves, volume.featurePoints(), 0.2 * volume.info().voxelSize);
     counts.stripQuads = strip.quads;
     counts.stripTriangles = strip.triangles;
   }

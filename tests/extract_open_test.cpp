@@ -1,0 +1,140 @@
+// Extraction of open sheets: the dual mesh plus the rebuilt boundary strip is edge-manifold and
+// consistently oriented, keeps every boundary loop (holes of one and two elements included),
+// stays within 0.25 voxel of the original surface, reaches every original boundary node within
+// 0.25 voxel, and keeps sharp folds within 0.1 voxel; on a plate, on a folded plate, on the shipped
+// sample part and on ../shared/data/bracket.k.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "support/mesh_topology.h"
+#include "support/surface_distance.h"
+#include "support/test_support.h"
+#include "voxremesh/extract.h"
+#include "voxremesh/io.h"
+#include "voxremesh/sheets.h"
+#include "voxremesh/volume.h"
+
+namespace voxremesh {
+namespace {
+
+/// A plate of n x n quads of size e (normal +z) off the voxel lattice, without the quads for
+/// which hole(i, j) is true; optionally folded by 90 degrees upwards along x = fold * e.
+FeModel plateModel(int n, double e, const std::function<bool(int, int)>& hole, int fold = -1) {
+  FeModel model;
+  const double x0 = 0.37 * e, y0 = 0.21 * e, z0 = 0.13 * e;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const Id id = j * (n + 1) + i + 1;
+      if (fold >= 0 && i > fold)
+        test::addNode(model, id, x0 + fold * e, y0 + j * e, z0 + (i - fold) * e);
+      else
+        test::addNode(model, id, x0 + i * e, y0 + j * e, z0);
+    }
+  Id shell = 1;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      if (hole && hole(i, j)) continue;
+      const Id a = j * (n + 1) + i + 1;
+      test::addShell(model, shell++, 1, {a, a + 1, a + n + 2, a + n + 1});
+    }
+  return model;
+}
+
+struct Extraction {
+  QuadMesh original;
+  QuadMesh mesh;
+  std::vector<Sheet> sheets;
+  double voxel = 0.0;
+  ExtractStats stats;
+};
+
+Extraction extractPart(const FeModel& model, Id part, double voxel,
+                       const SheetSettings& sheetSettings = {}) {
+  Extraction result;
+  result.original = quadMeshFromModel(model, part);
+  result.sheets = buildSheets(model, part, sheetSettings);
+  VolumeSettings settings;
+  settings.rule = VoxelSizeRule::Explicit;
+  settings.voxelSize = voxel;
+  result.voxel = voxel;
+  const Volume volume = buildVolume(result.sheets, settings);
+  result.mesh = extractQuadMesh(volume, {}, &result.stats);
+  return result;
+}
+
+std::size_t inputBoundaryLoops(const std::vector<Sheet>& sheets) {
+  std::size_t loops = 0;
+  for (const Sheet& sheet : sheets) loops += sheet.boundaryLoops.size();
+  return loops;
+}
+
+/// The properties every open extraction must have.
+void expectCleanOpenMesh(const Extraction& x) {
+  const test::MeshTopology topology = test::meshTopology(x.mesh);
+  EXPECT_EQ(topology.nonManifoldEdges, 0u);
+  EXPECT_EQ(topology.inconsistentEdges, 0u);
+  EXPECT_EQ(topology.nonManifoldVertices, 0u);
+  EXPECT_EQ(topology.boundaryLoops, inputBoundaryLoops(x.sheets)) << "every hole kept";
+
+  double worstPoint = 0.0;
+  for (const auto& p : x.mesh.points)
+    worstPoint = std::max(worstPoint, test::distanceToMesh(p, x.original));
+  EXPECT_LE(worstPoint, 0.25 * x.voxel) << "output nodes near the original surface";
+
+  const auto outputBoundary = test::boundarySegments(x.mesh);
+  double worstBoundary = 0.0;
+  for (const Sheet& sheet : x.sheets)
+    for (const Polyline& loop : sheet.boundaryLoops)
+      for (PointIndex p : loop.points)
+        worstBoundary =
+            std::max(worstBoundary, test::distanceToSegments(sheet.points[p], outputBoundary));
+  EXPECT_LE(worstBoundary, 0.25 * x.voxel) << "input boundary nodes on the output boundary";
+}
+
+TEST(ExtractOpen, PlateKeepsHolesOfOneAndTwoElementsAndALargerOne) {
+  const FeModel model = plateModel(16, 1.0, [](int i, int j) {
+    return (i == 3 && j == 3) ||                     // one element
+           (i >= 8 && i <= 9 && j == 4) ||           // two elements
+           (i >= 5 && i <= 9 && j >= 9 && j <= 12);  // 5 x 4 elements
+  });
+  const Extraction x = extractPart(model, 1, 1.0);
+  EXPECT_EQ(inputBoundaryLoops(x.sheets), 4u);
+  expectCleanOpenMesh(x);
+  EXPECT_GT(x.stats.stripQuads, 0u);
+}
+
+TEST(ExtractOpen, FoldStaysSharp) {
+  const double e = 1.0;
+  const FeModel model = plateModel(12, e, {}, 6);
+  const Extraction x = extractPart(model, 1, e);
+  expectCleanOpenMesh(x);
+  // The fold x = x0 + 6e, z = z0, along y: every point of it within 0.1 voxel of an output edge.
+  const auto edges = test::faceEdgeSegments(x.mesh);
+  double worst = 0.0;
+  for (int k = 0; k <= 120; ++k) {
+    const test::Point3 p{0.37 * e + 6 * e, 0.21 * e + 12 * e * k / 120.0, 0.13 * e};
+    worst = std::max(worst, test::distanceToSegments(p, edges));
+  }
+  EXPECT_LE(worst, 0.1 * x.voxel);
+  EXPECT_GT(x.stats.snappedVertices, 0u);
+}
+
+TEST(ExtractOpen, SamplePartKeepsItsSixLoops) {
+  const FeModel model = readDeck(std::string(VOXREMESH_SOURCE_DIR) + "/tools/samples/hat_rail.k");
+  const Id part = model.shells.front().part;
+  const Extraction x = extractPart(model, part, 4.0);
+  EXPECT_EQ(inputBoundaryLoops(x.sheets), 6u);
+  expectCleanOpenMesh(x);
+}
+
+TEST(ExtractOpen, BracketAtItsMedianEdgeLength) {
+  VOXREMESH_REQUIRE_SHARED_DECK(path, "bracket.k");
+  const FeModel model = readDeck(path);
+  const Extraction x = extractPart(model, 4075, 4.5);
+  EXPECT_EQ(inputBoundaryLoops(x.sheets), 12u);
+  expectCleanOpenMesh(x);
+}
+
+}  // namespace
+}  // namespace voxremesh
