@@ -10,14 +10,14 @@
 #include <string>
 #include <vector>
 
-#include "support/json.h"
+#include "json/json.h"
 #include "support/png.h"
 #include "support/test_support.h"
 
 namespace fs = std::filesystem;
+using voxremesh::json::Json;
+using voxremesh::json::parseJson;
 using voxremesh::test::CliRun;
-using voxremesh::test::Json;
-using voxremesh::test::parseJson;
 using voxremesh::test::quoted;
 using voxremesh::test::readText;
 using voxremesh::test::runCli;

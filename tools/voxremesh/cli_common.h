@@ -33,6 +33,10 @@ int runVoxelize(const std::vector<std::string>& args);
 int runInspect(const std::vector<std::string>& args);
 /// `voxremesh slice` (cli_slice.cpp).
 int runSlice(const std::vector<std::string>& args);
+/// `voxremesh batch` (cli_batch.cpp).
+int runBatchCommand(const std::vector<std::string>& args);
+/// `voxremesh -ACTION ...`, an action chain (cli_chain.cpp); receives all arguments.
+int runChain(const std::vector<std::string>& args);
 
 /// A malformed command line (unknown option, missing argument, ...): main prints the message and
 /// the command's usage line on stderr and exits with 2.

@@ -27,6 +27,8 @@ constexpr Command kCommands[] = {
      voxremesh::cli::runInspect},
     {"slice", "render one axis-aligned slice of a .vdb volume as a PNG image",
      voxremesh::cli::runSlice},
+    {"batch", "run the jobs of a JSON job file in parallel, with a summary",
+     voxremesh::cli::runBatchCommand},
 };
 
 const char* const kUsage = "voxremesh COMMAND [options]  (see voxremesh --help)";
@@ -42,7 +44,8 @@ void printHelp() {
       "\n"
       "  voxremesh help COMMAND   the options of a command (also: voxremesh COMMAND --help)\n"
       "  voxremesh --help         this text\n"
-      "  voxremesh --version      the version\n\n"
+      "  voxremesh --version      the version\n"
+      "  voxremesh -read IN -voxelize -write OUT.vdb ...   an action chain (voxremesh -help)\n\n"
       "exit codes: 0 success, 1 error (bad input, failed write), 2 malformed command line\n");
 }
 
@@ -69,6 +72,9 @@ int dispatch(const std::vector<std::string>& args) {
     printHelp();
     return 0;
   }
+  // An action chain: a single dash and a letter (-read, -config, -help, ...).
+  if (name.size() >= 2 && name[0] == '-' && name[1] != '-' && name != "-h")
+    return voxremesh::cli::runChain(args);
   if (name == "--version") {
     std::printf("voxremesh %s\n", VOXREMESH_VERSION);
     return 0;
