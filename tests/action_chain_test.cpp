@@ -9,6 +9,7 @@
 #include "support/test_support.h"
 #include "voxremesh/action_chain.h"
 #include "voxremesh/errors.h"
+#include "voxremesh/io.h"
 
 namespace fs = std::filesystem;
 using namespace voxremesh;
@@ -186,4 +187,16 @@ TEST(ActionChainCli, HelpAndBadInput) {
   const auto config = runCli("-config " + quoted(dir / "bad.cfg"));
   EXPECT_EQ(config.exitCode, 1);
   EXPECT_TRUE(contains(config.output, "bad.cfg:2")) << config.output;
+}
+
+TEST(ActionChainCli, ExtractWritesTheMeshIntoItsDeck) {
+  const fs::path dir = scratchDir("chain_extract");
+  const auto run = runCli("-read " + quoted(samplePart()) +
+                          " -voxelize size=5 -extract -print -write " + quoted(dir / "out.k"));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "extracted part 100")) << run.output;
+  EXPECT_TRUE(contains(run.output, "part 100 replaced in")) << run.output;
+  const FeModel out = readDeck(dir / "out.k");
+  EXPECT_GT(out.shells.size(), 1000u);
+  for (const Shell& shell : out.shells) EXPECT_EQ(shell.part, 100);
 }

@@ -7,14 +7,18 @@
 //   -> extractQuadMesh                  (extract.h, issue 4)
 //   -> optimisation -> quality report   (optimize.h, quality.h, issue 5)
 // and then replacePartMeshes (deck_assembly.h) puts all new meshes back into the deck in the
-// order of planRemesh. This header holds the stages that exist: planning and the volumes; the
-// declaration of remeshDeck itself is added with the stages it calls, so that nothing here
-// links against an unimplemented stage.
+// order of planRemesh. Optimisation and the quality report are not on this branch yet: remeshDeck
+// puts the extracted meshes back as they are until they land.
 #pragma once
 
 #include <cstddef>
+#include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
+
+#include "voxremesh/deck_assembly.h"
+#include "voxremesh/extract.h"
 
 #include "voxremesh/fe_model.h"
 #include "voxremesh/sheets.h"
@@ -34,6 +38,8 @@ struct RemeshSettings {
   /// Band, invalid angle, tie tolerance and memory limit of the volumes (volume.h defaults). The
   /// voxel size rule and size are set per part from the target size.
   VolumeSettings volume;
+  /// Extraction settings (extract.h defaults).
+  ExtractSettings extract;
   /// Threads for the parts and their stages; 0 (the default) means all cores.
   int threads = 0;
 };
@@ -77,5 +83,45 @@ std::vector<PartPlan> planRemesh(const FeModel& model, const RemeshSettings& set
 /// Throws as buildSheets and buildVolume; std::runtime_error when no shell of the part has an
 /// area.
 Volume partVolume(const FeModel& model, const PartPlan& plan, const RemeshSettings& settings);
+
+/// What remeshDeck did to one part.
+struct RemeshedPart {
+  PartPlan plan;
+  std::size_t quads = 0, trias = 0;  ///< of the new mesh
+  ExtractStats extract;
+  double volumeSeconds = 0.0;   ///< sheets and volume
+  double extractSeconds = 0.0;  ///< extraction
+};
+
+/// What remeshDeck did.
+struct RemeshReport {
+  std::vector<RemeshedPart> parts;  ///< in plan order
+  AssemblyReport assembly;
+  double assemblySeconds = 0.0;
+  double totalSeconds = 0.0;
+};
+
+/// Progress of remeshDeck: the stage ("volume", "extract", "assemble"), the part (0 for the
+/// whole deck) and the share of parts finished so far (0..1). Called from worker threads, one
+/// call at a time.
+using RemeshProgress = std::function<void(const std::string& stage, Id part, double done)>;
+
+/// Remeshes the planned parts of a deck in place (see the top of the file): parts in parallel
+/// within settings.threads, then one assembly. The result does not depend on the thread count.
+/// @param deck      the deck as readDeck returns it; modified only when every part succeeded
+/// @param settings  see RemeshSettings
+/// @param progress  optional progress callback
+/// Throws as planRemesh, partVolume and extractQuadMesh; when several parts fail, the error of
+/// the first failing part in plan order, its message prefixed with "part ID: ".
+RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
+                        const RemeshProgress& progress = {});
+
+/// The report as JSON: per part counts, target size and stage times; every node reference
+/// remapped (keyword, line, old and new node, part, distance) and every one not remappable.
+std::string remeshReportJson(const RemeshReport& report);
+
+/// Writes remeshReportJson(report) to `path` atomically. Throws std::runtime_error naming the
+/// path when it cannot be written.
+void writeRemeshReport(const RemeshReport& report, const std::filesystem::path& path);
 
 }  // namespace voxremesh

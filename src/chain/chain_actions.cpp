@@ -1,6 +1,6 @@
 // The actions of the chain (see action_chain.h) and the runner. Adding an action is one entry in
-// kActions plus its function: e.g. extract (extract.h: pops nothing, pushes
-// extractQuadMesh(topVolume)), optimize and quality (issue 5) follow the same pattern.
+// kActions plus its function; optimize and quality (issue 5) follow the pattern of extract: take
+// the topmost item of the kind they need, push (or replace) what they make.
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
@@ -11,6 +11,7 @@
 #include "voxremesh/deck_assembly.h"
 #include "voxremesh/deck_report.h"
 #include "voxremesh/errors.h"
+#include "voxremesh/extract.h"
 #include "voxremesh/pipeline.h"
 #include "voxremesh/sheets.h"
 #include "voxremesh/slice_image.h"
@@ -115,6 +116,29 @@ void runVoxelize(ChainState& state, const ActionCall& call) {
   std::snprintf(text, sizeof text, ": voxel size %.6g, %zu sheets\n", item.volume.info().voxelSize,
                 sheets.size());
   say(state, "voxelized part " + std::to_string(part) + text);
+  state.stack.push_back(std::move(item));
+}
+
+void runExtract(ChainState& state, const ActionCall& call) {
+  const ChainItem& source = topOf(state, Kind::Volume);
+  ChainItem item;
+  item.kind = Kind::Mesh;
+  ExtractStats stats;
+  if (call.flag("triangles")) {
+    item.mesh = extractTriangles(source.volume);
+    item.name = "MC33 triangles of " + source.name;
+  } else {
+    ExtractSettings settings;
+    settings.rebuildBoundary = call.flag("boundary");
+    settings.snapFeatures = call.flag("features");
+    item.mesh = extractQuadMesh(source.volume, settings, &stats);
+    item.name = "quad mesh of " + source.name;
+  }
+  std::size_t quads = 0;
+  for (const auto& face : item.mesh.faces) quads += cornerCount(face) == 4 ? 1 : 0;
+  say(state, "extracted part " + std::to_string(item.mesh.part) + ": " +
+                 std::to_string(item.mesh.points.size()) + " points, " + std::to_string(quads) +
+                 " quads, " + std::to_string(item.mesh.faces.size() - quads) + " triangles\n");
   state.stack.push_back(std::move(item));
 }
 
@@ -242,6 +266,14 @@ const std::vector<ActionDef> kActions = {
       {"feature", OptionType::Number, "30", "feature angle in degrees"},
       {"invalid", OptionType::Number, "60", "invalid angle at free boundaries in degrees"}},
      runVoxelize,
+     ""},
+    {"extract",
+     "extract the quad mesh of the topmost volume (extract.h)",
+     "",
+     {{"boundary", OptionType::Flag, "1", "rebuild the strip up to the boundary loops"},
+      {"features", OptionType::Flag, "1", "snap vertices to feature lines and points"},
+      {"triangles", OptionType::Flag, "0", "the MC33 triangles instead (inspection)"}},
+     runExtract,
      ""},
     {"write",
      "write the top item: a deck or mesh by extension, a volume as .vdb",

@@ -33,6 +33,10 @@ int runVoxelize(const std::vector<std::string>& args);
 int runInspect(const std::vector<std::string>& args);
 /// `voxremesh slice` (cli_slice.cpp).
 int runSlice(const std::vector<std::string>& args);
+/// `voxremesh extract` (cli_extract.cpp).
+int runExtract(const std::vector<std::string>& args);
+/// `voxremesh remesh` (cli_remesh.cpp).
+int runRemesh(const std::vector<std::string>& args);
 /// `voxremesh batch` (cli_batch.cpp).
 int runBatchCommand(const std::vector<std::string>& args);
 /// `voxremesh -ACTION ...`, an action chain (cli_chain.cpp); receives all arguments.

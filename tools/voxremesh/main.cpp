@@ -19,6 +19,8 @@ struct Command {
 
 // The subcommands; `voxremesh help NAME` runs NAME with --help.
 constexpr Command kCommands[] = {
+    {"remesh", "remesh the shell parts of a deck through the volume and write the deck",
+     voxremesh::cli::runRemesh},
     {"info", "mesh report per part: counts, sizes, topology checks", voxremesh::cli::runInfo},
     {"convert", "convert between deck and mesh formats", voxremesh::cli::runConvert},
     {"voxelize", "write one part into a narrow-band signed-distance .vdb volume",
@@ -27,6 +29,8 @@ constexpr Command kCommands[] = {
      voxremesh::cli::runInspect},
     {"slice", "render one axis-aligned slice of a .vdb volume as a PNG image",
      voxremesh::cli::runSlice},
+    {"extract", "extract the quad mesh (or MC33 triangles) of a .vdb volume",
+     voxremesh::cli::runExtract},
     {"batch", "run the jobs of a JSON job file in parallel, with a summary",
      voxremesh::cli::runBatchCommand},
 };
