@@ -14,21 +14,15 @@
 
 namespace fs = std::filesystem;
 using namespace voxremesh;
+using voxremesh::test::contains;
 using voxremesh::test::quoted;
 using voxremesh::test::readText;
 using voxremesh::test::runCli;
+using voxremesh::test::samplePart;
 using voxremesh::test::scratchDir;
 using voxremesh::test::writeText;
 
 namespace {
-
-fs::path samplePart() {
-  return fs::path(VOXREMESH_SOURCE_DIR) / "tools" / "samples" / "hat_rail.k";
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 /// A job file with two good conversions, one missing input and one invalid setting.
 std::string mixedJobs(const fs::path& sample) {

@@ -11,16 +11,14 @@
 
 namespace fs = std::filesystem;
 using namespace voxremesh;
+using voxremesh::test::contains;
 using voxremesh::test::quoted;
 using voxremesh::test::readText;
 using voxremesh::test::runCli;
+using voxremesh::test::samplePart;
 using voxremesh::test::scratchDir;
 
 namespace {
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 /// The text of a keyword block: from "\n*KEYWORD\n" to the next keyword line.
 std::string blockOf(const std::string& text, const std::string& keyword) {
@@ -33,7 +31,7 @@ std::string blockOf(const std::string& text, const std::string& keyword) {
 
 TEST(RemeshCli, SamplePartWithDefaults) {
   const fs::path dir = scratchDir("remesh_sample");
-  const fs::path sample = fs::path(VOXREMESH_SOURCE_DIR) / "tools" / "samples" / "hat_rail.k";
+  const fs::path sample = samplePart();
   const auto run = runCli("remesh " + quoted(sample) + " -o " + quoted(dir / "rail.k"));
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_TRUE(contains(run.output, "1 parts remeshed")) << run.output;
@@ -67,7 +65,7 @@ TEST(RemeshCli, BirdKeepsEveryOtherKeywordByteForByte) {
 
 TEST(RemeshCli, BadInputEndsWithAMessageAndNoOutput) {
   const fs::path dir = scratchDir("remesh_bad");
-  const fs::path sample = fs::path(VOXREMESH_SOURCE_DIR) / "tools" / "samples" / "hat_rail.k";
+  const fs::path sample = samplePart();
   const auto noPart =
       runCli("remesh " + quoted(sample) + " -o " + quoted(dir / "a.k") + " --parts 5");
   EXPECT_EQ(noPart.exitCode, 1);

@@ -142,26 +142,6 @@ void runExtract(ChainState& state, const ActionCall& call) {
   state.stack.push_back(std::move(item));
 }
 
-/// A deck holding only the mesh: nodes 1..n, shells 1..m of the mesh's part (1 when unknown).
-FeModel deckOfMesh(const QuadMesh& mesh) {
-  FeModel model;
-  const Id part = mesh.part != 0 ? mesh.part : 1;
-  model.partOrAdd(part);
-  for (std::size_t p = 0; p < mesh.points.size(); ++p)
-    model.nodes.push_back(Node{static_cast<Id>(p + 1), mesh.points[p]});
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    Shell shell;
-    shell.id = static_cast<Id>(f + 1);
-    shell.part = part;
-    shell.nodeCount = static_cast<std::uint8_t>(cornerCount(mesh.faces[f]));
-    for (int c = 0; c < shell.nodeCount; ++c)
-      shell.nodes[static_cast<std::size_t>(c)] =
-          static_cast<Id>(mesh.faces[f][static_cast<std::size_t>(c)]) + 1;
-    model.shells.push_back(shell);
-  }
-  return model;
-}
-
 void runWrite(ChainState& state, const ActionCall& call) {
   const std::filesystem::path path = call.text("file");
   const ChainItem& item = top(state);
@@ -196,7 +176,8 @@ void runWrite(ChainState& state, const ActionCall& call) {
         warnings.push_back(ref.keyword + " at line " + std::to_string(ref.line) + ": node " +
                            std::to_string(ref.node) + " kept: " + ref.reason);
     } else {
-      writeDeck(deckOfMesh(item.mesh), path, options, &warnings);
+      writeDeck(modelFromQuadMesh(item.mesh, item.mesh.part != 0 ? item.mesh.part : 1), path,
+                options, &warnings);
     }
   }
   warnAll(state, warnings);

@@ -3,10 +3,45 @@
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
+#include <string_view>
 
 namespace voxremesh::json {
 
 namespace {
+
+void appendHex4(std::string& out, unsigned value) {
+  static const char digits[] = "0123456789abcdef";
+  out += "\\u00";
+  out += digits[(value >> 4) & 0xF];
+  out += digits[value & 0xF];
+}
+
+// Length of the valid UTF-8 sequence at s[i] (2..4), or 0 when there is none.
+std::size_t utf8Sequence(std::string_view s, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned char c = byte(i);
+  std::size_t length = 0;
+  unsigned char lo = 0x80, hi = 0xBF;  // allowed range of the second byte
+  if (c >= 0xC2 && c <= 0xDF)
+    length = 2;
+  else if (c == 0xE0)
+    length = 3, lo = 0xA0;
+  else if ((c >= 0xE1 && c <= 0xEC) || c == 0xEE || c == 0xEF)
+    length = 3;
+  else if (c == 0xED)
+    length = 3, hi = 0x9F;
+  else if (c == 0xF0)
+    length = 4, lo = 0x90;
+  else if (c >= 0xF1 && c <= 0xF3)
+    length = 4;
+  else if (c == 0xF4)
+    length = 4, hi = 0x8F;
+  if (length == 0 || i + length > s.size()) return 0;
+  if (byte(i + 1) < lo || byte(i + 1) > hi) return 0;
+  for (std::size_t k = 2; k < length; ++k)
+    if (byte(i + k) < 0x80 || byte(i + k) > 0xBF) return 0;
+  return length;
+}
 
 class Parser {
  public:
@@ -261,37 +296,58 @@ Json parseJson(const std::string& text) {
   return Parser(text).parseDocument();
 }
 
-std::string quote(const std::string& text) {
-  std::string out = "\"";
-  for (const char ch : text) {
-    const unsigned char c = static_cast<unsigned char>(ch);
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (c < 0x20) {
-          char buffer[8];
-          std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
-          out += buffer;
-        } else {
-          out += ch;
-        }
+void appendJsonString(std::string& out, std::string_view s) {
+  out += '"';
+  for (std::size_t i = 0; i < s.size();) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    if (c < 0x80) {
+      switch (c) {
+        case '"':
+          out += "\\\"";
+          break;
+        case '\\':
+          out += "\\\\";
+          break;
+        case '\b':
+          out += "\\b";
+          break;
+        case '\f':
+          out += "\\f";
+          break;
+        case '\n':
+          out += "\\n";
+          break;
+        case '\r':
+          out += "\\r";
+          break;
+        case '\t':
+          out += "\\t";
+          break;
+        default:
+          if (c < 0x20)
+            appendHex4(out, c);
+          else
+            out += static_cast<char>(c);
+      }
+      ++i;
+      continue;
+    }
+    const std::size_t length = utf8Sequence(s, i);
+    if (length == 0) {
+      appendHex4(out, c);  // Latin-1 byte: the code point equals the byte
+      ++i;
+    } else {
+      out.append(s.substr(i, length));
+      i += length;
     }
   }
-  return out + "\"";
+  out += '"';
+}
+
+std::string quote(const std::string& text) {
+  std::string out;
+  appendJsonString(out, text);
+  return out;
 }
 
 }  // namespace voxremesh::json

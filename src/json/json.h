@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -45,7 +46,11 @@ class JsonError : public std::runtime_error {
 /// Throws JsonError naming the line and column of the first error.
 Json parseJson(const std::string& text);
 
-/// Escapes a string for a JSON document (quotes included).
+/// Appends `s` as a JSON string literal (quotes included); bytes that are not valid UTF-8 are
+/// taken as Latin-1.
+void appendJsonString(std::string& out, std::string_view s);
+
+/// `s` as a JSON string literal (appendJsonString).
 std::string quote(const std::string& text);
 
 }  // namespace voxremesh::json
