@@ -96,3 +96,51 @@ TEST(Progress, DrawsOnlyWhenEnabled) {
   const std::string text(buffer, read);
   EXPECT_EQ(text, "\r[ 10%] stage: a\x1b[K\r[100%] stage: c\x1b[K\r\x1b[K");
 }
+
+TEST(Pipeline, RemeshDeckDoesNotDependOnTheThreadCount) {
+  const FeModel sample = readDeck(test::samplePart());
+  // Two copies of the sample as two parts, so that the parts run in parallel.
+  FeModel deck = sample;
+  for (const Node& node : sample.nodes)
+    deck.nodes.push_back(Node{node.id + 100000, {node.xyz[0], node.xyz[1] + 300, node.xyz[2]}});
+  for (Shell shell : sample.shells) {
+    shell.id += 100000;
+    shell.part = 200;
+    for (int c = 0; c < shell.nodeCount; ++c) shell.nodes[static_cast<std::size_t>(c)] += 100000;
+    deck.shells.push_back(shell);
+  }
+  deck.partOrAdd(200, "copy");
+  RemeshSettings settings;
+  settings.targetSize = 8;
+  std::vector<std::string> written;
+  const auto dir = test::scratchDir("remesh_threads");
+  for (const int threads : {1, 2}) {
+    FeModel copy = deck;
+    settings.threads = threads;
+    std::vector<std::string> stages;
+    const RemeshReport report = remeshDeck(
+        copy, settings, [&](const std::string& stage, Id, double) { stages.push_back(stage); });
+    ASSERT_EQ(report.parts.size(), 2u);
+    EXPECT_EQ(stages.back(), "assemble");
+    EXPECT_GT(report.parts[1].quads, 0u);
+    const auto path = dir / ("out" + std::to_string(threads) + ".k");
+    writeDeck(copy, path);
+    written.push_back(test::readText(path));
+  }
+  EXPECT_EQ(written[0], written[1]);
+  // A failing part names itself; the deck is left as it was.
+  FeModel copy = deck;
+  settings.parts = {200};
+  settings.volume.memoryLimitBytes = 1000;
+  EXPECT_THROW(
+      {
+        try {
+          remeshDeck(copy, settings);
+        } catch (const SettingError& error) {
+          EXPECT_NE(std::string(error.what()).find("part 200: "), std::string::npos);
+          throw;
+        }
+      },
+      SettingError);
+  EXPECT_EQ(copy.shells.size(), deck.shells.size());
+}

@@ -47,8 +47,10 @@ Id choosePart(const FeModel& model, Id requested, const std::string& deckName,
   return parts.front();
 }
 
-double defaultTargetSize(const FeModel& model, Id part) {
-  const std::unordered_map<Id, std::size_t> index = model.nodeIndex();
+namespace {
+
+/// defaultTargetSize with the node index given (built once for many parts).
+double medianEdge(const FeModel& model, const std::unordered_map<Id, std::size_t>& index, Id part) {
   std::vector<double> lengths;
   for (const Shell& shell : model.shells) {
     if (shell.part != part) continue;
@@ -77,6 +79,12 @@ double defaultTargetSize(const FeModel& model, Id part) {
   return median;
 }
 
+}  // namespace
+
+double defaultTargetSize(const FeModel& model, Id part) {
+  return medianEdge(model, model.nodeIndex(), part);
+}
+
 std::vector<PartPlan> planRemesh(const FeModel& model, const RemeshSettings& settings) {
   if (!std::isfinite(settings.targetSize) || settings.targetSize < 0)
     throw SettingError("the target size must be a positive number (got " +
@@ -89,6 +97,10 @@ std::vector<PartPlan> planRemesh(const FeModel& model, const RemeshSettings& set
   std::sort(chosen.begin(), chosen.end());
   chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
   std::vector<PartPlan> plans;
+  std::unordered_map<Id, std::size_t> index;
+  if (!(settings.targetSize > 0)) index = model.nodeIndex();
+  std::unordered_map<Id, std::size_t> shellCount;
+  for (const Shell& shell : model.shells) ++shellCount[shell.part];
   for (const Id part : chosen) {
     if (!std::binary_search(withShells.begin(), withShells.end(), part))
       throw SettingError((model.findPart(part) ? "part " + std::to_string(part) + " has no shells"
@@ -97,9 +109,9 @@ std::vector<PartPlan> planRemesh(const FeModel& model, const RemeshSettings& set
     PartPlan plan;
     plan.part = part;
     if (const Part* found = model.findPart(part)) plan.name = found->name;
-    for (const Shell& shell : model.shells) plan.shells += shell.part == part ? 1 : 0;
+    plan.shells = shellCount[part];
     plan.targetSize =
-        settings.targetSize > 0 ? settings.targetSize : defaultTargetSize(model, part);
+        settings.targetSize > 0 ? settings.targetSize : medianEdge(model, index, part);
     plans.push_back(std::move(plan));
   }
   return plans;

@@ -2,11 +2,14 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <exception>
 #include <mutex>
 #include <stdexcept>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "io/atomic_file.h"
 #include "json/json.h"
@@ -39,6 +42,46 @@ double since(std::chrono::steady_clock::time_point start) {
   }
 }
 
+/// For each plan, a model holding the part's shells plus the shells of other parts that share a
+/// node with it (so that buildSheets still finds the seams), and the nodes they use: sheets and
+/// volumes then cost what the part costs, not what the deck costs.
+std::vector<FeModel> partModels(const FeModel& deck, const std::vector<PartPlan>& plans) {
+  std::unordered_map<Id, std::size_t> planOf;
+  for (std::size_t i = 0; i < plans.size(); ++i) planOf[plans[i].part] = i;
+  const std::unordered_map<Id, std::size_t> nodeIndex = deck.nodeIndex();
+  // The planned parts using each node (most nodes: one).
+  std::unordered_map<Id, std::vector<std::size_t>> plansOfNode;
+  for (const Shell& shell : deck.shells) {
+    const auto it = planOf.find(shell.part);
+    if (it == planOf.end()) continue;
+    for (int c = 0; c < shell.nodeCount; ++c) {
+      std::vector<std::size_t>& list = plansOfNode[shell.nodes[static_cast<std::size_t>(c)]];
+      if (std::find(list.begin(), list.end(), it->second) == list.end()) list.push_back(it->second);
+    }
+  }
+  std::vector<FeModel> models(plans.size());
+  std::vector<std::size_t> targets;
+  for (const Shell& shell : deck.shells) {
+    targets.clear();
+    for (int c = 0; c < shell.nodeCount; ++c) {
+      const auto it = plansOfNode.find(shell.nodes[static_cast<std::size_t>(c)]);
+      if (it == plansOfNode.end()) continue;
+      for (const std::size_t plan : it->second)
+        if (std::find(targets.begin(), targets.end(), plan) == targets.end())
+          targets.push_back(plan);
+    }
+    for (const std::size_t plan : targets) models[plan].shells.push_back(shell);
+  }
+  for (FeModel& model : models) {
+    std::unordered_set<Id> used;
+    for (const Shell& shell : model.shells)
+      for (int c = 0; c < shell.nodeCount; ++c)
+        if (used.insert(shell.nodes[static_cast<std::size_t>(c)]).second)
+          model.nodes.push_back(deck.nodes[nodeIndex.at(shell.nodes[static_cast<std::size_t>(c)])]);
+  }
+  return models;
+}
+
 }  // namespace
 
 RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
@@ -47,6 +90,7 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
   RemeshReport report;
   const std::vector<PartPlan> plans = planRemesh(deck, settings);
   report.parts.resize(plans.size());
+  const std::vector<FeModel> models = partModels(deck, plans);
   std::vector<QuadMesh> meshes(plans.size());
   std::vector<std::exception_ptr> errors(plans.size());
   std::mutex progressMutex;
@@ -67,7 +111,7 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
       try {
         tell("volume", plans[i].part, false);
         auto stageStart = std::chrono::steady_clock::now();
-        const Volume volume = partVolume(deck, plans[i], settings);
+        const Volume volume = partVolume(models[i], plans[i], settings);
         part.volumeSeconds = since(stageStart);
         tell("extract", plans[i].part, false);
         stageStart = std::chrono::steady_clock::now();
