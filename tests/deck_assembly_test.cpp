@@ -65,6 +65,18 @@ const DeckBlock& block(const FeModel& model, const std::string& keyword) {
   throw std::runtime_error("no block " + keyword);
 }
 
+/// Two unit quads side by side on nodes 1..6 (x = 0, 1, 2; y = 0, 1): shell 1 of `partA`, shell 2
+/// of `partB`.
+FeModel twoQuads(Id partA, Id partB) {
+  FeModel model;
+  model.sourceFormat = DeckFormat::LsDyna;
+  for (Id i = 1; i <= 6; ++i)
+    test::addNode(model, i, static_cast<double>((i - 1) % 3), static_cast<double>((i - 1) / 3));
+  test::addShell(model, 1, partA, {1, 2, 5, 4});
+  test::addShell(model, 2, partB, {2, 3, 6, 5});
+  return model;
+}
+
 std::map<Id, std::array<double, 3>> nodesById(const FeModel& model) {
   std::map<Id, std::array<double, 3>> nodes;
   for (const Node& node : model.nodes) nodes[node.id] = node.xyz;
@@ -155,12 +167,7 @@ TEST(DeckAssembly, UnreferencedOldNodesAreRemoved) {
 }
 
 TEST(DeckAssembly, JunctionPointsOfTwoRemeshedPartsBecomeOneNode) {
-  FeModel model;
-  model.sourceFormat = DeckFormat::LsDyna;
-  for (Id i = 1; i <= 6; ++i)
-    test::addNode(model, i, static_cast<double>((i - 1) % 3), static_cast<double>((i - 1) / 3));
-  test::addShell(model, 1, 1, {1, 2, 5, 4});
-  test::addShell(model, 2, 2, {2, 3, 6, 5});
+  FeModel model = twoQuads(1, 2);
   QuadMesh a, b;
   a.part = 1;
   a.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
@@ -182,23 +189,13 @@ TEST(DeckAssembly, JunctionPointsOfTwoRemeshedPartsBecomeOneNode) {
   EXPECT_EQ(model.nodes.size(), 6u);
   EXPECT_EQ(model.nodes.front().id, 7);
   // Without the Junction role, coincident points stay apart.
-  FeModel again;
-  again.sourceFormat = DeckFormat::LsDyna;
-  for (Id i = 1; i <= 6; ++i)
-    test::addNode(again, i, static_cast<double>((i - 1) % 3), static_cast<double>((i - 1) / 3));
-  test::addShell(again, 1, 1, {1, 2, 5, 4});
-  test::addShell(again, 2, 2, {2, 3, 6, 5});
+  FeModel again = twoQuads(1, 2);
   a.constraints.clear();
   EXPECT_EQ(replacePartMeshes(again, {a, b}).mergedJunctionPoints, 0u);
 }
 
 TEST(DeckAssembly, TypesAndExtrasComeFromTheOldShells) {
-  FeModel model;
-  model.sourceFormat = DeckFormat::LsDyna;
-  for (Id i = 1; i <= 6; ++i)
-    test::addNode(model, i, static_cast<double>((i - 1) % 3), static_cast<double>((i - 1) / 3));
-  test::addShell(model, 1, 1, {1, 2, 5, 4});
-  test::addShell(model, 2, 1, {2, 3, 6, 5});
+  FeModel model = twoQuads(1, 1);
   const std::uint8_t thick = model.internShellType("_THICKNESS");
   for (Shell& shell : model.shells) shell.type = thick;
   model.shellExtras.resize(2);
