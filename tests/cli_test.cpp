@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "io/text_scan.h"
-#include "support/json.h"
+#include "json/json.h"
 #include "support/test_support.h"
 
 namespace fs = std::filesystem;
@@ -155,7 +155,7 @@ TEST(Cli, InfoPrintsTheTableAndValidJson) {
 
   const CliRun json = runCliSplit("info " + quoted(dir / "deck.k") + " --json");
   ASSERT_EQ(json.exitCode, 0) << json.err;
-  EXPECT_NO_THROW(voxremesh::test::parseJson(json.out)) << json.out;
+  EXPECT_NO_THROW(voxremesh::json::parseJson(json.out)) << json.out;
   for (const char* key :
        {"\"model\"", "\"parts\"", "\"total\"", "\"examples\"", "\"boundaryEdges\"",
         "\"nonManifoldEdges\"", "\"inconsistentEdges\"", "\"edgeLength\""})

@@ -10,30 +10,24 @@
 #include <string>
 #include <vector>
 
-#include "support/json.h"
+#include "json/json.h"
 #include "support/png.h"
 #include "support/test_support.h"
 
 namespace fs = std::filesystem;
+using voxremesh::json::Json;
+using voxremesh::json::parseJson;
 using voxremesh::test::CliRun;
-using voxremesh::test::Json;
-using voxremesh::test::parseJson;
+using voxremesh::test::contains;
 using voxremesh::test::quoted;
 using voxremesh::test::readText;
 using voxremesh::test::runCli;
 using voxremesh::test::runCliSplit;
+using voxremesh::test::samplePart;
 using voxremesh::test::scratchDir;
 using voxremesh::test::writeText;
 
 namespace {
-
-fs::path samplePart() {
-  return fs::path(VOXREMESH_SOURCE_DIR) / "tools" / "samples" / "hat_rail.k";
-}
-
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 // The default slice colours (slice_image.h, `voxremesh help slice`).
 using Colour = std::array<std::uint8_t, 3>;

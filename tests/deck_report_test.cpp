@@ -16,19 +16,19 @@
 #include <string>
 #include <vector>
 
+#include "json/json.h"
 #include "model/shell_edges.h"
-#include "support/json.h"
 #include "support/test_support.h"
 #include "voxremesh/errors.h"
 
 using namespace voxremesh;
+using json::Json;
+using json::parseJson;
 using model::BoundaryChain;
 using model::Index;
 using model::ShellEdges;
 using test::addNode;
 using test::addShell;
-using test::Json;
-using test::parseJson;
 
 namespace {
 

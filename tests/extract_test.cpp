@@ -151,8 +151,7 @@ TEST(ExtractClosed, SmoothNoiseIsClosedManifoldWithTheTriangulationsEuler) {
   expectClosedManifold(mesh, euler);
   EXPECT_EQ(stats.cutCells % 2, 0u);
   EXPECT_EQ((euler - expected) % 2, 0);
-  EXPECT_LE(std::abs(euler - expected), int(stats.cutCells))
-      << "cut pairs: " << stats.cutCells / 2;
+  EXPECT_LE(std::abs(euler - expected), int(stats.cutCells)) << "cut pairs: " << stats.cutCells / 2;
   EXPECT_GT(stats.tunnelCells + stats.cutCells, 0u) << "the field should exercise both cases";
   EXPECT_GT(test::meshTopology(mesh).components, 1u) << "the noise should make several pieces";
 }

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -69,6 +70,11 @@ struct DeckBlock {
   enum class Kind { Verbatim, Nodes, Shells };
   Kind kind = Kind::Verbatim;
   std::string text;  ///< for Verbatim: the exact bytes of the source, line endings included
+  /// Where the block's first line stood in the source: the file as messages name it and the
+  /// 1-based line; line 0 when the reader does not record it (Nastran and Abaqus blocks, which
+  /// gather lines of several keywords, and blocks built in memory).
+  std::string file{};
+  std::size_t line = 0;
 };
 
 /// A whole deck: geometry plus the rest of the file, verbatim.

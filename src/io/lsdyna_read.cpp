@@ -110,12 +110,12 @@ class DeckReader {
     while (cursor.next()) {
       if (!lsdyna::isKeywordLine(cursor.line())) continue;
       if (preamble && cursor.begin() > 0)
-        addVerbatim(file, std::string_view(content).substr(0, cursor.begin()));
+        addVerbatim(file, std::string_view(content).substr(0, cursor.begin()), 1);
       preamble = false;
       if (!readBlock(file, content, cursor)) return;
     }
     if (preamble) {
-      addVerbatim(file, content);
+      addVerbatim(file, content, 1);
       warnings_.push_back(file.name + ": no keyword line (a line starting with '*') in the file");
     }
   }
@@ -139,7 +139,7 @@ class DeckReader {
     }
     if (name == "*END") {
       if (file.isMain) {
-        addVerbatim(file, content.substr(begin));
+        addVerbatim(file, content.substr(begin), keywordLineNumber);
       } else {
         const std::string_view rest = content.substr(cursor.end());
         if (!isBlankLine(rest))
@@ -162,12 +162,13 @@ class DeckReader {
       if (file.isMain) deckFormat_ = file.format;
       const std::size_t end = skipBlock(cursor, content.size());
       if (file.isMain) {
-        addVerbatim(file, content.substr(begin, end - begin));
+        addVerbatim(file, content.substr(begin, end - begin), keywordLineNumber);
       } else {
         // An include's *KEYWORD line would stand mid-deck once inlined: keep only its comments.
         const std::size_t afterLine = content.find('\n', begin);
         if (afterLine != std::string_view::npos && afterLine + 1 < end)
-          addVerbatim(file, content.substr(afterLine + 1, end - afterLine - 1));
+          addVerbatim(file, content.substr(afterLine + 1, end - afterLine - 1),
+                      keywordLineNumber + 1);
       }
       return true;
     }
@@ -180,12 +181,13 @@ class DeckReader {
     const std::string_view text = content.substr(begin, end - begin);
     if (name == "*PART" || name.compare(0, 6, "*PART_") == 0)
       readParts(file, text, keywordLineNumber, name, format);
-    addKeywordBlock(file, text, keyword);
+    addKeywordBlock(file, text, keyword, keywordLineNumber);
     return true;
   }
 
-  void addVerbatim(const SourceFile& file, std::string_view text) {
-    DeckBlock block{DeckBlock::Kind::Verbatim, std::string(text)};
+  /// Adds verbatim text whose first line is line `line` of `file`.
+  void addVerbatim(const SourceFile& file, std::string_view text, std::size_t line) {
+    DeckBlock block{DeckBlock::Kind::Verbatim, std::string(text), file.name, line};
     // Inlined include content must end its last line before the next block starts.
     if (!file.isMain && !block.text.empty() && block.text.back() != '\n') block.text += '\n';
     model_.blocks.push_back(std::move(block));
@@ -193,15 +195,16 @@ class DeckReader {
 
   /// Adds a keyword block verbatim; an include block in a format other than the main deck's gets
   /// the suffix that selects its format, so that the inlined text reads the same.
-  void addKeywordBlock(SourceFile& file, std::string_view text, const KeywordLine& keyword) {
+  void addKeywordBlock(SourceFile& file, std::string_view text, const KeywordLine& keyword,
+                       std::size_t line) {
     if (file.isMain || keyword.suffix || file.format == deckFormat_) {
-      addVerbatim(file, text);
+      addVerbatim(file, text, line);
       return;
     }
     std::string marked(text.substr(0, keyword.tokenEnd));
     marked += lsdyna::suffixText(file.format);
     marked += text.substr(keyword.tokenEnd);
-    addVerbatim(file, marked);
+    addVerbatim(file, marked, line);
     if (!file.suffixWarned) {
       warnings_.push_back(file.name + " is read in the " + formatName(file.format) +
                           " format, unlike the main deck: its inlined keywords got the '" +

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/text_scan.h"
+#include "json/json.h"
 #include "voxremesh/deck_report.h"
 
 namespace voxremesh {
@@ -148,89 +149,6 @@ std::string more(std::size_t shown, std::size_t total) {
 // ---------------------------------------------------------------------------------------------
 // JSON
 
-void appendHex4(std::string& out, unsigned value) {
-  static const char digits[] = "0123456789abcdef";
-  out += "\\u00";
-  out += digits[(value >> 4) & 0xF];
-  out += digits[value & 0xF];
-}
-
-// Length of the valid UTF-8 sequence at s[i] (2..4), or 0 when there is none.
-std::size_t utf8Sequence(std::string_view s, std::size_t i) {
-  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
-  const unsigned char c = byte(i);
-  std::size_t length = 0;
-  unsigned char lo = 0x80, hi = 0xBF;  // allowed range of the second byte
-  if (c >= 0xC2 && c <= 0xDF)
-    length = 2;
-  else if (c == 0xE0)
-    length = 3, lo = 0xA0;
-  else if ((c >= 0xE1 && c <= 0xEC) || c == 0xEE || c == 0xEF)
-    length = 3;
-  else if (c == 0xED)
-    length = 3, hi = 0x9F;
-  else if (c == 0xF0)
-    length = 4, lo = 0x90;
-  else if (c >= 0xF1 && c <= 0xF3)
-    length = 4;
-  else if (c == 0xF4)
-    length = 4, hi = 0x8F;
-  if (length == 0 || i + length > s.size()) return 0;
-  if (byte(i + 1) < lo || byte(i + 1) > hi) return 0;
-  for (std::size_t k = 2; k < length; ++k)
-    if (byte(i + k) < 0x80 || byte(i + k) > 0xBF) return 0;
-  return length;
-}
-
-// A JSON string literal; bytes that are not valid UTF-8 are taken as Latin-1.
-void appendJsonString(std::string& out, std::string_view s) {
-  out += '"';
-  for (std::size_t i = 0; i < s.size();) {
-    const unsigned char c = static_cast<unsigned char>(s[i]);
-    if (c < 0x80) {
-      switch (c) {
-        case '"':
-          out += "\\\"";
-          break;
-        case '\\':
-          out += "\\\\";
-          break;
-        case '\b':
-          out += "\\b";
-          break;
-        case '\f':
-          out += "\\f";
-          break;
-        case '\n':
-          out += "\\n";
-          break;
-        case '\r':
-          out += "\\r";
-          break;
-        case '\t':
-          out += "\\t";
-          break;
-        default:
-          if (c < 0x20)
-            appendHex4(out, c);
-          else
-            out += static_cast<char>(c);
-      }
-      ++i;
-      continue;
-    }
-    const std::size_t length = utf8Sequence(s, i);
-    if (length == 0) {
-      appendHex4(out, c);  // Latin-1 byte: the code point equals the byte
-      ++i;
-    } else {
-      out.append(s.substr(i, length));
-      i += length;
-    }
-  }
-  out += '"';
-}
-
 void appendJsonNumber(std::string& out, double value) {
   if (std::isfinite(value))
     io::appendShortest(out, value);
@@ -249,7 +167,7 @@ class JsonWriter {
   void endArray() { close(']'); }
   void key(std::string_view name) {
     separate();
-    appendJsonString(out_, name);
+    json::appendJsonString(out_, name);
     out_ += ": ";
     afterKey_ = true;
   }
@@ -263,7 +181,7 @@ class JsonWriter {
   void value(bool flag) { scalar(flag ? "true" : "false"); }
   void value(std::string_view text) {
     std::string literal;
-    appendJsonString(literal, text);
+    json::appendJsonString(literal, text);
     scalar(literal);
   }
   void null() { scalar("null"); }

@@ -9,6 +9,7 @@
 #include <string>
 #include <type_traits>
 
+#include "json/json.h"
 #include "volume/volume_grids.h"
 #include "voxremesh/volume.h"
 
@@ -41,32 +42,7 @@ GridReport reportGrid(const GridT& grid) {
 }
 
 std::string jsonString(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char esc[8];
-          std::snprintf(esc, sizeof esc, "\\u%04x", c);
-          out += esc;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
+  return json::quote(s);
 }
 
 std::string jsonNumber(double v) {

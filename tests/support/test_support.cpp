@@ -19,6 +19,14 @@ std::filesystem::path sharedDeck(const std::string& name) {
   return sharedDataDir() / name;
 }
 
+std::filesystem::path samplePart() {
+  return std::filesystem::path(VOXREMESH_SOURCE_DIR) / "tools" / "samples" / "hat_rail.k";
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
 namespace {
 
 struct ScratchRoot {

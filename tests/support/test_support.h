@@ -16,6 +16,12 @@ std::filesystem::path sharedDataDir();
 /// below when it is missing.
 std::filesystem::path sharedDeck(const std::string& name);
 
+/// The sample part shipped with the sources (tools/samples/hat_rail.k).
+std::filesystem::path samplePart();
+
+/// `text` contains `part`.
+bool contains(const std::string& text, const std::string& part);
+
 /// A fresh, empty folder for one test, removed when the process exits.
 std::filesystem::path scratchDir(const std::string& name);
 

@@ -35,6 +35,12 @@ int runInspect(const std::vector<std::string>& args);
 int runSlice(const std::vector<std::string>& args);
 /// `voxremesh extract` (cli_extract.cpp).
 int runExtract(const std::vector<std::string>& args);
+/// `voxremesh remesh` (cli_remesh.cpp).
+int runRemesh(const std::vector<std::string>& args);
+/// `voxremesh batch` (cli_batch.cpp).
+int runBatchCommand(const std::vector<std::string>& args);
+/// `voxremesh -ACTION ...`, an action chain (cli_chain.cpp); receives all arguments.
+int runChain(const std::vector<std::string>& args);
 
 /// A malformed command line (unknown option, missing argument, ...): main prints the message and
 /// the command's usage line on stderr and exits with 2.

@@ -3,12 +3,12 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <set>
 #include <string>
 #include <vector>
 
 #include "cli_common.h"
 #include "voxremesh/io.h"
+#include "voxremesh/pipeline.h"
 #include "voxremesh/sheets.h"
 #include "voxremesh/volume.h"
 
@@ -47,39 +47,15 @@ const char* const kHelp =
     "Settings the machine cannot hold (a voxel size needing more memory than half of it) are\n"
     "refused before anything is allocated, with the smallest voxel size that fits.\n";
 
-/// The IDs of the parts that have shells, ascending.
-std::set<Id> shellParts(const FeModel& model) {
-  std::set<Id> parts;
-  for (const Shell& shell : model.shells) parts.insert(shell.part);
-  return parts;
-}
-
-std::string listIds(const std::set<Id>& ids) {
-  std::string text;
-  for (const Id id : ids) text += (text.empty() ? "" : ", ") + std::to_string(id);
-  return text;
-}
-
 /// The part to voxelize: --part when given (it must have shells), else the deck's only shell part.
-Id choosePart(const FeModel& model, const ParsedArgs& parsed, const std::string& deck) {
-  const std::set<Id> parts = shellParts(model);
-  if (parts.empty()) throw std::runtime_error(deck + " has no shell elements to voxelize");
-  if (const auto text = parsed.value("--part")) {
-    const Id part = parseInteger("--part", *text);
-    if (parts.count(part) == 0) {
-      throw std::runtime_error(
-          (model.findPart(part) ? "part " + std::to_string(part) + " of " + deck + " has no shells"
-                                : "no part " + std::to_string(part) + " in " + deck) +
-          "; parts with shells: " + listIds(parts));
-    }
-    return part;
+Id choosePartOption(const FeModel& model, const ParsedArgs& parsed, const std::string& deck) {
+  const auto text = parsed.value("--part");
+  try {
+    return choosePart(model, text ? parseInteger("--part", *text) : 0, deck, "--part");
+  } catch (const SettingError& error) {
+    if (text) throw;
+    throw UsageError(error.what(), kUsage);
   }
-  if (parts.size() > 1) {
-    throw UsageError(deck + " has " + std::to_string(parts.size()) +
-                         " parts with shells; choose one with --part (" + listIds(parts) + ")",
-                     kUsage);
-  }
-  return *parts.begin();
 }
 
 VolumeSettings volumeSettings(const ParsedArgs& parsed) {
@@ -140,7 +116,7 @@ int runVoxelize(const std::vector<std::string>& args) {
   const std::string& deck = parsed.positional[0];
   Warnings warnings;
   const FeModel model = readDeck(deck, readOptions, &warnings);
-  const Id part = choosePart(model, parsed, deck);
+  const Id part = choosePartOption(model, parsed, deck);
   const std::vector<Sheet> sheets = buildSheets(model, part, sheetSettings);
   std::size_t shells = 0, faces = 0;
   for (const Shell& shell : model.shells) shells += shell.part == part ? 1 : 0;

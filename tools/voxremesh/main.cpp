@@ -19,6 +19,8 @@ struct Command {
 
 // The subcommands; `voxremesh help NAME` runs NAME with --help.
 constexpr Command kCommands[] = {
+    {"remesh", "remesh the shell parts of a deck through the volume and write the deck",
+     voxremesh::cli::runRemesh},
     {"info", "mesh report per part: counts, sizes, topology checks", voxremesh::cli::runInfo},
     {"convert", "convert between deck and mesh formats", voxremesh::cli::runConvert},
     {"voxelize", "write one part into a narrow-band signed-distance .vdb volume",
@@ -29,6 +31,8 @@ constexpr Command kCommands[] = {
      voxremesh::cli::runSlice},
     {"extract", "extract the quad mesh (or MC33 triangles) of a .vdb volume",
      voxremesh::cli::runExtract},
+    {"batch", "run the jobs of a JSON job file in parallel, with a summary",
+     voxremesh::cli::runBatchCommand},
 };
 
 const char* const kUsage = "voxremesh COMMAND [options]  (see voxremesh --help)";
@@ -44,7 +48,8 @@ void printHelp() {
       "\n"
       "  voxremesh help COMMAND   the options of a command (also: voxremesh COMMAND --help)\n"
       "  voxremesh --help         this text\n"
-      "  voxremesh --version      the version\n\n"
+      "  voxremesh --version      the version\n"
+      "  voxremesh -read IN -voxelize -write OUT.vdb ...   an action chain (voxremesh -help)\n\n"
       "exit codes: 0 success, 1 error (bad input, failed write), 2 malformed command line\n");
 }
 
@@ -71,6 +76,9 @@ int dispatch(const std::vector<std::string>& args) {
     printHelp();
     return 0;
   }
+  // An action chain: a single dash and a letter (-read, -config, -help, ...).
+  if (name.size() >= 2 && name[0] == '-' && name[1] != '-' && name != "-h")
+    return voxremesh::cli::runChain(args);
   if (name == "--version") {
     std::printf("voxremesh %s\n", VOXREMESH_VERSION);
     return 0;

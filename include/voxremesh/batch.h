@@ -1,0 +1,130 @@
+// Scripted batch: a JSON job file lists inputs, outputs and per-job settings; the jobs run in
+// parallel within a thread budget, a failing job is reported while the others still run, and a
+// summary (CSV and JSON) says per job what happened.
+//
+// Job file (JSON; relative paths are relative to the job file's folder; unknown keys are errors):
+//   {
+//     "threads": 2,                          optional: thread budget (--threads overrides it)
+//     "defaults": { SETTINGS },              optional: settings every job starts from
+//     "jobs": [ JOB, ... ]                   required, at least one
+//   }
+//   JOB = {
+//     "name": "bracket",                     optional; default: the input file's stem, plus
+//                                            "-" and the variant number for variants
+//     "task": "voxelize",                    required: "voxelize" (a part into a .vdb volume),
+//                                            "convert" (deck to deck by extension) or "chain"
+//     "input": "decks/bracket.k",            the input file, or
+//     "inputs": "decks/*.k",                 a glob: one job per matching file, sorted by name
+//                                            (wildcards * ? [...] in the file name only)
+//     "output": "out/{stem}_s{size}.vdb",    required; {stem} is the input's stem, {name} the
+//                                            job's name, {index} its number, {KEY} a setting
+//     "settings": { SETTINGS },              optional: over the defaults
+//     "variants": [ { SETTINGS }, ... ],     optional: one job per variant, over the settings
+//     "chain": ["-read", "{input}", "-voxelize", "size={size}", "-write", "{output}"]
+//                                            task "chain": the actions (action_chain.h), with the
+//                                            placeholders above and {input}
+//   }
+//   SETTINGS = { "size": 4, "voxel": 1.5, "part": 4075, "band": 3, "feature_angle": 30,
+//                "invalid_angle": 60, "format": "k" }   (all optional; format: of the output)
+// Jobs are numbered from 0 in the order of the file after expanding globs and variants.
+// A job file that is not valid JSON or breaks this structure is refused as a whole
+// (InputError naming the file and line); a setting of the wrong type or out of range, a missing
+// or unreadable input and any failure while running fail that job only.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace voxremesh {
+
+/// What a job does.
+enum class BatchTask { Voxelize, Convert, Chain };
+
+/// One job after expanding globs and variants.
+struct BatchJob {
+  std::size_t index = 0;
+  std::string name;
+  BatchTask task = BatchTask::Voxelize;
+  std::filesystem::path input;
+  std::filesystem::path output;
+  /// The merged settings (defaults, job settings, variant) as JSON scalar texts: numbers as
+  /// written, strings unquoted.
+  std::map<std::string, std::string> settings;
+  /// For settings given as strings: their keys (so that a number given as text is refused).
+  std::map<std::string, bool> settingIsText;
+  std::vector<std::string> chain;  ///< task chain: the arguments, placeholders filled in
+  std::string problem;  ///< set when the job cannot run as written (e.g. unknown placeholder)
+};
+
+/// A parsed job file.
+struct BatchFile {
+  std::vector<BatchJob> jobs;
+  int threads = 0;  ///< 0 when the file does not say
+};
+
+/// Reads a job file (see the schema above).
+/// Throws InputError naming the file and line for unreadable files, invalid JSON and structure
+/// errors (missing or unknown keys, wrong types of the structure, an empty job list, a glob that
+/// matches no file).
+BatchFile readBatchFile(const std::filesystem::path& path);
+
+/// How runBatch runs.
+struct BatchOptions {
+  int threads = 0;             ///< 0: all cores
+  bool resume = false;         ///< skip jobs whose output exists (outputs are written atomically)
+  std::size_t shardIndex = 0;  ///< run the jobs with index % shardCount == shardIndex
+  std::size_t shardCount = 1;
+  /// Called when a job ends (from worker threads, one call at a time), with the number of
+  /// jobs of this shard finished so far and their count.
+  std::function<void(const struct BatchResult&, std::size_t done, std::size_t total)> onJobDone;
+};
+
+/// Parses "I/N" (0 <= I < N). Throws SettingError naming the text otherwise.
+void parseShard(const std::string& text, BatchOptions& options);
+
+/// What happened to one job.
+struct BatchResult {
+  std::size_t index = 0;
+  std::string name;
+  std::string status;  ///< "ok", "failed", "skipped" (resume), "other-shard"
+  std::string message;
+  double seconds = 0.0;
+  std::optional<std::size_t> elementsIn;   ///< shells of the input (of the part for voxelize)
+  std::optional<std::size_t> elementsOut;  ///< shells written (deck outputs)
+  /// Filled once the pipeline's quality and distance stages exist (issue 5): elements failing
+  /// a quality criterion and the two-sided distance to the original.
+  std::optional<std::size_t> qualityFailures;
+  std::optional<double> maxDistance;
+};
+
+/// Runs the jobs of this shard in parallel within the thread budget; every job runs to its own
+/// end whatever the others do. Returns one result per job of `jobs` (jobs of other shards with
+/// status "other-shard"), in job order; deterministic apart from times.
+/// Throws SettingError for threads < 0 or a shard outside its count.
+std::vector<BatchResult> runBatch(const std::vector<BatchJob>& jobs, const BatchOptions& options);
+
+/// The summary as CSV: a header line, then one line per job that ran or was skipped (other
+/// shards left out): index,name,task,input,output,status,message,seconds,elements_in,
+/// elements_out,quality_failures,max_distance (empty where unknown; RFC 4180 quoting).
+std::string batchSummaryCsv(const std::vector<BatchJob>& jobs,
+                            const std::vector<BatchResult>& results);
+
+/// The summary as JSON: {"jobs": [...], "ok": n, "failed": n, "skipped": n} with the CSV's
+/// fields per job (null where unknown).
+std::string batchSummaryJson(const std::vector<BatchJob>& jobs,
+                             const std::vector<BatchResult>& results);
+
+/// Writes batchSummaryCsv to PREFIX.csv and batchSummaryJson to PREFIX.json, each atomically.
+/// Throws std::runtime_error naming the path when one cannot be written.
+void writeBatchSummaries(const std::vector<BatchJob>& jobs, const std::vector<BatchResult>& results,
+                         const std::string& prefix);
+
+/// The name of a task ("voxelize", "convert", "chain").
+const char* taskName(BatchTask task);
+
+}  // namespace voxremesh

@@ -1,0 +1,125 @@
+// Deck assembly: putting remeshed parts back into the deck they came from.
+//
+// replacePartMeshes replaces the shells of each remeshed part by the faces of its new mesh and
+// keeps everything else of the deck: the other parts, every other element type and keyword.
+//
+// Definitions
+// - Remeshed parts: the parts of the given meshes (QuadMesh::part). Kept shells: the shells of
+//   every other part; kept-shell nodes: the nodes they use.
+// - Old nodes: the nodes used by shells of remeshed parts but by no kept shell. They are removed
+//   unless a keyword still names them after remapping (see below).
+// - New node IDs: points of the meshes in mesh order, then point order, get consecutive IDs from
+//   one above the largest node ID of the input deck (removed nodes included, so that a stale
+//   reference can never name a new node). Two points become one node when
+//   (a) a point has bit-identical coordinates to a kept-shell node: it takes that node's ID (the
+//       lowest ID when several kept-shell nodes share the coordinates), so a seam with a part
+//       that is not remeshed stays conforming; or
+//   (b) two points of meshes of different parts both have PointRole::Junction and bit-identical
+//       coordinates: the later one takes the earlier one's node.
+// - New element IDs: the faces of the meshes in mesh order, then face order, get consecutive IDs
+//   from one above the largest element ID of the deck: shells, and the first field of the data
+//   lines of verbatim element keywords (LS-DYNA *ELEMENT_..., Nastran C..., RBE..., CONM2,
+//   PLOTEL, Abaqus *ELEMENT). A face with kNoCorner fourth corner is a triangle.
+// - Element type and extras: a new shell gets the element type most of the part's old shells
+//   had (ties: the lower type index). When some old shells of the part had per-element extras
+//   (thickness, material angle, offset), each new shell takes those of the old shell whose
+//   centroid is nearest to its own centroid (ties: the earlier shell).
+// - Order: kept shells keep their order; new shells follow them, in mesh and face order. Kept
+//   nodes keep their order; new nodes follow them.
+// - Node references: verbatim keywords that name old nodes are rewritten to the nearest new node
+//   of a part the old node belonged to (Euclidean distance to the node's point; ties: the lower
+//   node ID), each change listed in NodeRemap. The keywords understood field by field:
+//     LS-DYNA  *SET_NODE, *SET_NODE_LIST (_TITLE), *DATABASE_HISTORY_NODE (_ID),
+//              *CONSTRAINED_SPOTWELD, *CONSTRAINED_NODAL_RIGID_BODY (PNODE),
+//              *CONSTRAINED_EXTRA_NODES_NODE, *BOUNDARY_SPC_NODE,
+//              *BOUNDARY_PRESCRIBED_MOTION_NODE, *INITIAL_VELOCITY_NODE, *LOAD_NODE_POINT,
+//              *ELEMENT_MASS, *ELEMENT_BEAM, *ELEMENT_DISCRETE, *ELEMENT_SPH
+//     Nastran  SPC, SPCD, SPC1, RBE2, RBE3, CONM2, CBUSH, CBAR, CBEAM, CROD, CONROD, CELAS1,
+//              CELAS2, CDAMP1, CDAMP2, CWELD (GS, GA, GB), PLOTEL, FORCE, MOMENT, CORD1R/C/S,
+//              CHEXA, CPENTA, CTETRA
+//     Abaqus   *NSET, *BOUNDARY, *CLOAD, *ELEMENT (non-shell types)
+//   A rewritten field keeps its columns (fixed format: right-aligned in the field's width;
+//   free format: the token replaced); every other byte of the deck stays as it was.
+// - Unmapped references: a reference that cannot be rewritten (a range such as *SET_NODE_LIST_
+//   GENERATE, SPC1 THRU or *NSET GENERATE covering an old node; a new ID wider than its fixed
+//   field; a tab-expanded Nastran field), and any integer equal to an old node ID in keywords
+//   that may name nodes but are not understood field by field (LS-DYNA keywords starting with
+//   *ELEMENT_, *CONSTRAINED_, *BOUNDARY_, *LOAD_, *INITIAL_, *SET_NODE, *DATABASE_HISTORY_ or
+//   containing _NODE, except those naming sets, parts or contacts: a name (without _TITLE or
+//   _ID) ending in _SET or holding _SET_, ending in _RIGID, *CONTACT_..., *CONSTRAINED_RIGID_
+//   BODIES; Nastran cards starting with C or R, MPC, SET1, ASET, OMIT, SUPORT, FORCE1/2,
+//   MOMENT1/2, PLOAD4, TEMP; Abaqus *EQUATION, *MPC, *INITIAL CONDITIONS, *KINEMATIC COUPLING) is
+//   listed in UnmappedReference and its node is kept (detached from the new mesh), never
+//   dropped. Such a scan cannot tell a node ID from another number that happens to be equal, so
+//   it may list false alarms; it never changes the deck.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "voxremesh/fe_model.h"
+#include "voxremesh/quad_mesh.h"
+
+namespace voxremesh {
+
+/// One rewritten node reference.
+struct NodeRemap {
+  std::string keyword;  ///< "*SET_NODE_LIST", "SPC1", "*NSET", ...
+  std::string file;     ///< the source file of the keyword's block (empty when not recorded)
+  /// The line of the reference: in `file` when the block's location is recorded, else the line
+  /// within the block (blockLine says which).
+  std::size_t line = 0;
+  bool blockLine = false;
+  Id oldNode = 0;
+  Id newNode = 0;
+  Id part = 0;  ///< the remeshed part whose new node was chosen
+  double distance = 0.0;
+};
+
+/// A reference to an old node that was not rewritten; the node is kept.
+struct UnmappedReference {
+  std::string keyword;
+  std::string file;
+  std::size_t line = 0;
+  bool blockLine = false;  ///< as NodeRemap::blockLine
+  Id node = 0;
+  std::string reason;
+};
+
+/// Counts of one remeshed part.
+struct AssembledPart {
+  Id part = 0;
+  std::size_t shellsBefore = 0;
+  std::size_t shellsAfter = 0;
+  std::size_t quadsAfter = 0;
+  std::size_t triasAfter = 0;
+};
+
+/// What replacePartMeshes did.
+struct AssemblyReport {
+  std::vector<AssembledPart> parts;  ///< in the order of the meshes
+  std::vector<NodeRemap> remaps;     ///< in deck order
+  std::vector<UnmappedReference> unmapped;
+  std::size_t removedNodes = 0;
+  std::size_t keptOldNodes = 0;          ///< old nodes kept for unmapped references
+  std::size_t seamPoints = 0;            ///< points that took a kept-shell node (rule a)
+  std::size_t mergedJunctionPoints = 0;  ///< points that took another mesh's node (rule b)
+  std::size_t newNodes = 0;
+  Id firstNewNodeId = 0;     ///< 0 when no node was added
+  Id firstNewElementId = 0;  ///< 0 when no element was added
+};
+
+/// Replaces the shells of each remeshed part by its new mesh (see the definitions at the top of
+/// the file).
+/// @param model     the deck; node IDs unique, every shell naming existing nodes (as readDeck
+///                  ensures); modified in place
+/// @param newParts  one mesh per remeshed part, QuadMesh::part naming a part with shells in the
+///                  model; faces in range, coordinates finite
+/// @return what was replaced, remapped and what could not be remapped
+/// Throws std::invalid_argument (the model is then unchanged) when a mesh names part 0, a part
+/// without shells or a part twice, has a face corner out of range or a non-finite coordinate,
+/// or when a shell names a node the model does not define.
+AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& newParts);
+
+}  // namespace voxremesh

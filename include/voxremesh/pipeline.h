@@ -1,0 +1,127 @@
+// The remeshing pipeline as the engineer runs it (`voxremesh remesh`, batch jobs, the chain's
+// actions): which parts, at which target size, and the stages composed per part.
+//
+// remeshDeck composes, per selected part (parts in parallel with TBB, each stage parallel inside;
+// the result does not depend on the thread count):
+//   buildSheets -> buildVolume          (partVolume below; sheets.h, volume.h)
+//   -> extractQuadMesh                  (extract.h, issue 4)
+//   -> optimisation -> quality report   (optimize.h, quality.h, issue 5)
+// and then replacePartMeshes (deck_assembly.h) puts all new meshes back into the deck in the
+// order of planRemesh. Optimisation and the quality report are not on this branch yet: remeshDeck
+// puts the extracted meshes back as they are until they land.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "voxremesh/deck_assembly.h"
+#include "voxremesh/extract.h"
+
+#include "voxremesh/fe_model.h"
+#include "voxremesh/sheets.h"
+#include "voxremesh/volume.h"
+
+namespace voxremesh {
+
+/// Settings of remeshing a deck. Every field has a documented default.
+struct RemeshSettings {
+  /// Target element size in model units; 0 (the default) means per part the median element edge
+  /// length of the part's shells (defaultTargetSize). Negative or non-finite is refused.
+  double targetSize = 0.0;
+  /// The parts to remesh; empty (the default) means every part with shells.
+  std::vector<Id> parts;
+  /// Feature and corner angles (sheets.h defaults: 30 degrees).
+  SheetSettings sheets;
+  /// Band, invalid angle, tie tolerance and memory limit of the volumes (volume.h defaults). The
+  /// voxel size rule and size are set per part from the target size.
+  VolumeSettings volume;
+  /// Extraction settings (extract.h defaults).
+  ExtractSettings extract;
+  /// Threads for the parts and their stages; 0 (the default) means all cores.
+  int threads = 0;
+};
+
+/// One part as it will be remeshed.
+struct PartPlan {
+  Id part = 0;
+  std::string name;
+  std::size_t shells = 0;   ///< shells of the part before remeshing
+  double targetSize = 0.0;  ///< the target element size used for the part
+};
+
+/// The IDs of the parts that have shells, ascending.
+std::vector<Id> shellPartIds(const FeModel& model);
+
+/// The part an action on one part works on: `requested` when it is not 0 (it must have shells),
+/// else the deck's only part with shells.
+/// @param deckName  the deck as messages name it
+/// @param option    how the user chooses a part, for the message ("--part", "part=")
+/// Throws std::runtime_error naming the deck when it has no shells, when `requested` has none
+/// (listing the parts with shells), and SettingError when `requested` is 0 and several parts
+/// have shells ("DECK has N parts with shells; choose one with OPTION (list)").
+Id choosePart(const FeModel& model, Id requested, const std::string& deckName,
+              const std::string& option);
+
+/// The median edge length of the part's shells (each side of each shell counted, as
+/// reportDeck's edge statistics; the mean of the two middle ones for an even count).
+/// Preconditions: the part has shells naming existing nodes. Throws std::invalid_argument when
+/// the part has no shells or every side has zero length.
+double defaultTargetSize(const FeModel& model, Id part);
+
+/// The parts remeshDeck will remesh and their target sizes, in ascending part ID.
+/// Throws SettingError when a requested part does not exist or has no shells (listing the parts
+/// with shells), when the target size is negative or not finite, when threads is negative, or
+/// when the volume settings are invalid (checkVolumeSettings); std::invalid_argument as
+/// defaultTargetSize.
+std::vector<PartPlan> planRemesh(const FeModel& model, const RemeshSettings& settings);
+
+/// The first two stages for one planned part: its sheets, written into a volume whose voxel size
+/// is the plan's target size.
+/// Throws as buildSheets and buildVolume; std::runtime_error when no shell of the part has an
+/// area.
+Volume partVolume(const FeModel& model, const PartPlan& plan, const RemeshSettings& settings);
+
+/// What remeshDeck did to one part.
+struct RemeshedPart {
+  PartPlan plan;
+  std::size_t quads = 0, trias = 0;  ///< of the new mesh
+  ExtractStats extract;
+  double volumeSeconds = 0.0;   ///< sheets and volume
+  double extractSeconds = 0.0;  ///< extraction
+};
+
+/// What remeshDeck did.
+struct RemeshReport {
+  std::vector<RemeshedPart> parts;  ///< in plan order
+  AssemblyReport assembly;
+  double assemblySeconds = 0.0;
+  double totalSeconds = 0.0;
+};
+
+/// Progress of remeshDeck: the stage ("volume", "extract", "assemble"), the part (0 for the
+/// whole deck) and the share of parts finished so far (0..1). Called from worker threads, one
+/// call at a time.
+using RemeshProgress = std::function<void(const std::string& stage, Id part, double done)>;
+
+/// Remeshes the planned parts of a deck in place (see the top of the file): parts in parallel
+/// within settings.threads, then one assembly. The result does not depend on the thread count.
+/// @param deck      the deck as readDeck returns it; modified only when every part succeeded
+/// @param settings  see RemeshSettings
+/// @param progress  optional progress callback
+/// Throws as planRemesh, partVolume and extractQuadMesh; when several parts fail, the error of
+/// the first failing part in plan order, its message prefixed with "part ID: ".
+RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
+                        const RemeshProgress& progress = {});
+
+/// The report as JSON: per part counts, target size and stage times; every node reference
+/// remapped (keyword, line, old and new node, part, distance) and every one not remappable.
+std::string remeshReportJson(const RemeshReport& report);
+
+/// Writes remeshReportJson(report) to `path` atomically. Throws std::runtime_error naming the
+/// path when it cannot be written.
+void writeRemeshReport(const RemeshReport& report, const std::filesystem::path& path);
+
+}  // namespace voxremesh

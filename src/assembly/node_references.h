@@ -1,0 +1,50 @@
+// Finding the node references in the verbatim blocks of a deck, per format, so that deck assembly
+// can rewrite those that name removed nodes (see include/voxremesh/deck_assembly.h for the
+// keywords understood and the scan of the others). Internal to src/assembly.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <unordered_set>
+#include <vector>
+
+#include "voxremesh/fe_model.h"
+
+namespace voxremesh::assembly {
+
+/// How a reference can be treated.
+enum class ReferenceKind {
+  Field,    ///< one node ID in one field: can be rewritten in place
+  Range,    ///< a range of IDs (generate, THRU) covering the node: cannot be rewritten
+  Suspect,  ///< an equal integer in a keyword not understood field by field: reported only
+};
+
+/// One reference to a node of the watched set in a verbatim block.
+struct NodeReference {
+  std::size_t block = 0;   ///< index into FeModel::blocks
+  std::size_t offset = 0;  ///< where the replaced span starts in the block's text
+  std::size_t length = 0;  ///< length of the replaced span
+  std::size_t width = 0;   ///< fixed field width to right-align into (0: free format token)
+  std::size_t line = 0;    ///< 1-based line within the block
+  Id node = 0;
+  ReferenceKind kind = ReferenceKind::Field;
+  std::string keyword;  ///< as the deck names it ("*SET_NODE_LIST", "SPC1", "*NSET")
+  std::string reason;   ///< for Range and Suspect (and Field spans that cannot be rewritten)
+};
+
+/// Finds the references to nodes of `watched` in the verbatim blocks of `model` (its
+/// sourceFormat selects the syntax; surface formats have none). Deterministic, in block order and
+/// text order.
+std::vector<NodeReference> findNodeReferences(const FeModel& model,
+                                              const std::unordered_set<Id>& watched);
+
+/// The largest element ID named by the verbatim element keywords of the model (first field of
+/// the data lines of LS-DYNA *ELEMENT_..., Nastran element and rigid element cards, Abaqus
+/// *ELEMENT data lines), or 0.
+Id maxVerbatimElementId(const FeModel& model);
+
+/// Text of `id` to put into the span of `reference`: right-aligned in the field width, or the
+/// plain number for a free-format token. Returns false when it does not fit the width.
+bool referenceText(const NodeReference& reference, Id id, std::string& text);
+
+}  // namespace voxremesh::assembly

@@ -1,0 +1,299 @@
+// replacePartMeshes: the remeshed parts put back into their deck (see deck_assembly.h).
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "assembly/nearest_point.h"
+#include "assembly/node_references.h"
+#include "voxremesh/deck_assembly.h"
+
+namespace voxremesh {
+
+namespace {
+
+using Point = std::array<double, 3>;
+
+/// Hash of the exact bits of a coordinate triple (bit-identical points are equal keys; +0 and -0
+/// are told apart, as "bit-identical" says).
+struct PointBits {
+  std::array<std::uint64_t, 3> bits{};
+  explicit PointBits(const Point& p) {
+    for (int a = 0; a < 3; ++a) std::memcpy(&bits[static_cast<std::size_t>(a)], &p[a], 8);
+  }
+  bool operator==(const PointBits& other) const { return bits == other.bits; }
+};
+
+struct PointBitsHash {
+  std::size_t operator()(const PointBits& key) const {
+    std::uint64_t h = 1469598103934665603ull;
+    for (const std::uint64_t b : key.bits) h = (h ^ b) * 1099511628211ull + (h >> 29);
+    return static_cast<std::size_t>(h);
+  }
+};
+
+void checkMeshes(const FeModel& model, const std::vector<QuadMesh>& meshes) {
+  std::set<Id> withShells;
+  for (const Shell& shell : model.shells) withShells.insert(shell.part);
+  std::set<Id> seen;
+  for (const QuadMesh& mesh : meshes) {
+    const std::string part = "part " + std::to_string(mesh.part);
+    if (mesh.part == 0) throw std::invalid_argument("a remeshed mesh names no part (part 0)");
+    if (!withShells.count(mesh.part))
+      throw std::invalid_argument(part + " has no shells in the model to replace");
+    if (!seen.insert(mesh.part).second)
+      throw std::invalid_argument(part + " is given twice among the remeshed parts");
+    for (const Point& p : mesh.points)
+      if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+        throw std::invalid_argument("the new mesh of " + part + " has a non-finite coordinate");
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+      for (int c = 0; c < cornerCount(mesh.faces[f]); ++c)
+        if (mesh.faces[f][static_cast<std::size_t>(c)] >= mesh.points.size())
+          throw std::invalid_argument("face " + std::to_string(f) + " of the new mesh of " + part +
+                                      " names point " +
+                                      std::to_string(mesh.faces[f][static_cast<std::size_t>(c)]) +
+                                      " of " + std::to_string(mesh.points.size()));
+  }
+}
+
+Point centroid(const FeModel& model, const std::unordered_map<Id, std::size_t>& nodeIndex,
+               const Shell& shell) {
+  Point sum{0, 0, 0};
+  for (int c = 0; c < shell.nodeCount; ++c) {
+    const Point& p = model.nodes[nodeIndex.at(shell.nodes[static_cast<std::size_t>(c)])].xyz;
+    for (int a = 0; a < 3; ++a) sum[static_cast<std::size_t>(a)] += p[static_cast<std::size_t>(a)];
+  }
+  for (double& v : sum) v /= shell.nodeCount;
+  return sum;
+}
+
+/// What a remeshed part's new shells inherit from its old ones.
+struct PartTemplate {
+  std::uint8_t type = 0;
+  std::vector<Point> centroids;      ///< of the old shells, when some had extras
+  std::vector<std::int32_t> extras;  ///< their extras index (-1: none)
+};
+
+}  // namespace
+
+AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& newParts) {
+  checkMeshes(model, newParts);
+  const std::unordered_map<Id, std::size_t> nodeIndex = model.nodeIndex();
+  for (const Shell& shell : model.shells)
+    for (int c = 0; c < shell.nodeCount; ++c)
+      if (!nodeIndex.count(shell.nodes[static_cast<std::size_t>(c)]))
+        throw std::invalid_argument("shell " + std::to_string(shell.id) + " names node " +
+                                    std::to_string(shell.nodes[static_cast<std::size_t>(c)]) +
+                                    ", which the model does not define");
+
+  AssemblyReport report;
+  std::unordered_map<Id, std::size_t> meshOfPart;
+  for (std::size_t m = 0; m < newParts.size(); ++m) meshOfPart[newParts[m].part] = m;
+
+  // Old and kept-shell nodes; the parts each old node belonged to; the templates of new shells.
+  std::unordered_set<Id> keptShellNodes;
+  for (const Shell& shell : model.shells)
+    if (!meshOfPart.count(shell.part))
+      for (int c = 0; c < shell.nodeCount; ++c)
+        keptShellNodes.insert(shell.nodes[static_cast<std::size_t>(c)]);
+  std::unordered_set<Id> oldNodes;
+  std::unordered_map<Id, std::vector<std::size_t>> meshesOfOldNode;
+  std::vector<PartTemplate> templates(newParts.size());
+  std::vector<std::map<std::uint8_t, std::size_t>> typeCounts(newParts.size());
+  std::vector<bool> anyExtras(newParts.size(), false);
+  report.parts.resize(newParts.size());
+  for (std::size_t m = 0; m < newParts.size(); ++m) report.parts[m].part = newParts[m].part;
+  for (const Shell& shell : model.shells) {
+    const auto it = meshOfPart.find(shell.part);
+    if (it == meshOfPart.end()) continue;
+    const std::size_t m = it->second;
+    ++report.parts[m].shellsBefore;
+    ++typeCounts[m][shell.type];
+    anyExtras[m] = anyExtras[m] || shell.extras >= 0;
+    for (int c = 0; c < shell.nodeCount; ++c) {
+      const Id node = shell.nodes[static_cast<std::size_t>(c)];
+      if (keptShellNodes.count(node)) continue;
+      oldNodes.insert(node);
+      std::vector<std::size_t>& meshes = meshesOfOldNode[node];
+      if (std::find(meshes.begin(), meshes.end(), m) == meshes.end()) meshes.push_back(m);
+    }
+  }
+  for (std::size_t m = 0; m < newParts.size(); ++m) {
+    std::size_t most = 0;
+    for (const auto& [type, count] : typeCounts[m])
+      if (count > most) {
+        most = count;
+        templates[m].type = type;
+      }
+  }
+  for (const Shell& shell : model.shells) {
+    const auto it = meshOfPart.find(shell.part);
+    if (it == meshOfPart.end() || !anyExtras[it->second]) continue;
+    templates[it->second].centroids.push_back(centroid(model, nodeIndex, shell));
+    templates[it->second].extras.push_back(shell.extras);
+  }
+
+  // New node IDs (above every node ID of the input) and the merging rules (a) and (b).
+  Id maxNode = 0;
+  for (const Node& node : model.nodes) maxNode = std::max(maxNode, node.id);
+  Id maxElement = assembly::maxVerbatimElementId(model);
+  for (const Shell& shell : model.shells) maxElement = std::max(maxElement, shell.id);
+  std::unordered_map<PointBits, Id, PointBitsHash> keptAt;
+  for (const Node& node : model.nodes) {
+    if (!keptShellNodes.count(node.id)) continue;
+    const auto [it, inserted] = keptAt.emplace(PointBits(node.xyz), node.id);
+    if (!inserted && node.id < it->second) it->second = node.id;
+  }
+  std::unordered_map<PointBits, std::pair<Id, std::size_t>, PointBitsHash> junctionAt;
+  std::vector<std::vector<Id>> pointIds(newParts.size());
+  std::vector<Node> addedNodes;
+  Id nextNode = maxNode + 1;
+  for (std::size_t m = 0; m < newParts.size(); ++m) {
+    const QuadMesh& mesh = newParts[m];
+    pointIds[m].resize(mesh.points.size());
+    for (std::size_t p = 0; p < mesh.points.size(); ++p) {
+      const PointBits key(mesh.points[p]);
+      if (const auto kept = keptAt.find(key); kept != keptAt.end()) {
+        pointIds[m][p] = kept->second;
+        ++report.seamPoints;
+        continue;
+      }
+      const bool junction =
+          !mesh.constraints.empty() && mesh.constraints[p].role == PointRole::Junction;
+      if (junction) {
+        const auto found = junctionAt.find(key);
+        if (found != junctionAt.end() && found->second.second != m) {
+          pointIds[m][p] = found->second.first;
+          ++report.mergedJunctionPoints;
+          continue;
+        }
+      }
+      pointIds[m][p] = nextNode;
+      addedNodes.push_back(Node{nextNode, mesh.points[p]});
+      if (junction) junctionAt.emplace(key, std::make_pair(nextNode, m));
+      ++nextNode;
+    }
+  }
+  report.newNodes = addedNodes.size();
+  if (!addedNodes.empty()) report.firstNewNodeId = maxNode + 1;
+
+  // Node references of the verbatim keywords: rewrite, or report and keep the node.
+  std::vector<assembly::NodeReference> references = assembly::findNodeReferences(model, oldNodes);
+  std::vector<assembly::NearestPoint> searches;
+  searches.reserve(newParts.size());
+  for (const QuadMesh& mesh : newParts) searches.emplace_back(mesh.points);
+  std::unordered_set<Id> keptOld;
+  struct Edit {
+    std::size_t offset, length;
+    std::string text;
+  };
+  std::vector<std::vector<Edit>> edits(model.blocks.size());
+  for (const assembly::NodeReference& reference : references) {
+    const DeckBlock& block = model.blocks[reference.block];
+    const bool located = block.line > 0;
+    const std::size_t line = located ? block.line + reference.line - 1 : reference.line;
+    const auto unmapped = [&](const std::string& reason) {
+      report.unmapped.push_back(
+          UnmappedReference{reference.keyword, block.file, line, !located, reference.node, reason});
+      keptOld.insert(reference.node);
+    };
+    if (reference.kind != assembly::ReferenceKind::Field) {
+      unmapped(reference.reason);
+      continue;
+    }
+    const Point& old = model.nodes[nodeIndex.at(reference.node)].xyz;
+    Id bestId = 0;
+    Id bestPart = 0;
+    double bestDistance = std::numeric_limits<double>::infinity();
+    for (const std::size_t m : meshesOfOldNode.at(reference.node)) {
+      double distance = 0;
+      const std::size_t p = searches[m].nearest(old, &distance);
+      if (p == std::numeric_limits<std::size_t>::max()) continue;
+      const Id id = pointIds[m][p];
+      if (distance < bestDistance || (distance == bestDistance && id < bestId)) {
+        bestDistance = distance;
+        bestId = id;
+        bestPart = newParts[m].part;
+      }
+    }
+    if (bestId == 0) {
+      unmapped("the new mesh of its part has no points");
+      continue;
+    }
+    std::string text;
+    if (!assembly::referenceText(reference, bestId, text)) {
+      unmapped("the new node ID " + std::to_string(bestId) + " does not fit the field's " +
+               std::to_string(reference.width) + " columns");
+      continue;
+    }
+    edits[reference.block].push_back(Edit{reference.offset, reference.length, std::move(text)});
+    report.remaps.push_back(NodeRemap{reference.keyword, block.file, line, !located, reference.node,
+                                      bestId, bestPart, bestDistance});
+  }
+  // Apply the edits of each block from its end, so that earlier offsets stay valid.
+  for (std::size_t b = 0; b < edits.size(); ++b) {
+    std::sort(edits[b].begin(), edits[b].end(),
+              [](const Edit& x, const Edit& y) { return x.offset > y.offset; });
+    for (const Edit& edit : edits[b])
+      model.blocks[b].text.replace(edit.offset, edit.length, edit.text);
+  }
+
+  // Shells: kept ones in order, then the new ones; extras by the nearest old centroid.
+  std::vector<Shell> shells;
+  shells.reserve(model.shells.size());
+  for (const Shell& shell : model.shells)
+    if (!meshOfPart.count(shell.part)) shells.push_back(shell);
+  Id nextElement = maxElement + 1;
+  for (std::size_t m = 0; m < newParts.size(); ++m) {
+    const QuadMesh& mesh = newParts[m];
+    const PartTemplate& tmpl = templates[m];
+    const assembly::NearestPoint oldCentroids(tmpl.centroids);
+    for (const auto& face : mesh.faces) {
+      Shell shell;
+      shell.id = nextElement++;
+      shell.part = mesh.part;
+      shell.type = tmpl.type;
+      shell.nodeCount = static_cast<std::uint8_t>(cornerCount(face));
+      Point sum{0, 0, 0};
+      for (int c = 0; c < shell.nodeCount; ++c) {
+        const CornerIndex p = face[static_cast<std::size_t>(c)];
+        shell.nodes[static_cast<std::size_t>(c)] = pointIds[m][p];
+        for (int a = 0; a < 3; ++a)
+          sum[static_cast<std::size_t>(a)] += mesh.points[p][static_cast<std::size_t>(a)];
+      }
+      if (!tmpl.centroids.empty()) {
+        for (double& v : sum) v /= shell.nodeCount;
+        shell.extras = tmpl.extras[oldCentroids.nearest(sum)];
+      }
+      (shell.nodeCount == 4 ? report.parts[m].quadsAfter : report.parts[m].triasAfter) += 1;
+      shells.push_back(shell);
+    }
+    report.parts[m].shellsAfter = mesh.faces.size();
+  }
+  if (nextElement > maxElement + 1) report.firstNewElementId = maxElement + 1;
+  model.shells = std::move(shells);
+
+  // Nodes: old nodes removed unless still referenced; the new ones appended.
+  std::vector<Node> nodes;
+  nodes.reserve(model.nodes.size() + addedNodes.size());
+  for (const Node& node : model.nodes) {
+    if (oldNodes.count(node.id) && !keptOld.count(node.id)) {
+      ++report.removedNodes;
+      model.nodeExtras.erase(node.id);
+      continue;
+    }
+    nodes.push_back(node);
+  }
+  report.keptOldNodes = keptOld.size();
+  nodes.insert(nodes.end(), addedNodes.begin(), addedNodes.end());
+  model.nodes = std::move(nodes);
+  return report;
+}
+
+}  // namespace voxremesh

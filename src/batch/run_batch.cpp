@@ -1,0 +1,219 @@
+// Running batch jobs in parallel within a thread budget (batch.h).
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <mutex>
+#include <new>
+#include <stdexcept>
+#include <string>
+
+#include "voxremesh/action_chain.h"
+#include "voxremesh/batch.h"
+#include "voxremesh/errors.h"
+#include "voxremesh/io.h"
+#include "voxremesh/pipeline.h"
+#include "voxremesh/sheets.h"
+#include "voxremesh/volume.h"
+
+namespace voxremesh {
+
+namespace {
+
+/// The settings of one job, checked.
+struct JobSettings {
+  std::optional<double> size, voxel;
+  Id part = 0;
+  double band = 3.0, featureAngle = 30.0, invalidAngle = 60.0;
+  std::optional<DeckFormat> format;
+};
+
+double numberSetting(const BatchJob& job, const std::string& key) {
+  const std::string& text = job.settings.at(key);
+  if (job.settingIsText.at(key))
+    throw SettingError("setting " + key + " must be a number, not \"" + text + "\"");
+  return std::strtod(text.c_str(), nullptr);  // a JSON number literal
+}
+
+JobSettings checkSettings(const BatchJob& job) {
+  JobSettings settings;
+  for (const auto& [key, text] : job.settings) {
+    if (key == "size" || key == "voxel") {
+      const double value = numberSetting(job, key);
+      if (!(value > 0) || !std::isfinite(value))
+        throw SettingError("setting " + key + " must be a positive size, not " + text);
+      (key == "size" ? settings.size : settings.voxel) = value;
+    } else if (key == "part") {
+      const double value = numberSetting(job, key);
+      if (value != std::floor(value) || value <= 0 || value > 9.2e18)
+        throw SettingError("setting part must be a positive whole number, not " + text);
+      settings.part = static_cast<Id>(value);
+    } else if (key == "band") {
+      settings.band = numberSetting(job, key);
+    } else if (key == "feature_angle") {
+      settings.featureAngle = numberSetting(job, key);
+    } else if (key == "invalid_angle") {
+      settings.invalidAngle = numberSetting(job, key);
+    } else if (key == "format") {
+      if (!job.settingIsText.at(key)) throw SettingError("setting format must be a string");
+      settings.format = formatFromName(text);
+    } else {
+      throw SettingError("unknown setting \"" + key +
+                         "\" (size, voxel, part, band, feature_angle, invalid_angle, format)");
+    }
+  }
+  if (settings.size && settings.voxel) throw SettingError("give either size or voxel, not both");
+  return settings;
+}
+
+void runVoxelize(const BatchJob& job, const JobSettings& settings, BatchResult& result) {
+  const FeModel model = readDeck(job.input);
+  const Id part = choosePart(model, settings.part, job.input.string(), "the setting \"part\"");
+  VolumeSettings volume;
+  volume.bandWidthVoxels = settings.band;
+  volume.invalidAngleDeg = settings.invalidAngle;
+  if (settings.voxel) {
+    volume.rule = VoxelSizeRule::Explicit;
+    volume.voxelSize = *settings.voxel;
+  } else {
+    volume.rule = VoxelSizeRule::TargetElementSize;
+    volume.targetElementSize = settings.size ? *settings.size : defaultTargetSize(model, part);
+  }
+  checkVolumeSettings(volume);
+  SheetSettings sheetSettings;
+  sheetSettings.featureAngleDeg = settings.featureAngle;
+  const std::vector<Sheet> sheets = buildSheets(model, part, sheetSettings);
+  if (sheets.empty())
+    throw std::runtime_error("part " + std::to_string(part) + " has no shell with an area");
+  std::size_t shells = 0;
+  for (const Shell& shell : model.shells) shells += shell.part == part ? 1 : 0;
+  result.elementsIn = shells;
+  writeVolume(buildVolume(sheets, volume, VolumeSource{job.input.string()}), job.output);
+  result.message = "part " + std::to_string(part);
+}
+
+void runConvert(const BatchJob& job, const JobSettings& settings, BatchResult& result) {
+  const FeModel model = readDeck(job.input);
+  WriteOptions options;
+  options.format = settings.format;
+  writeDeck(model, job.output, options);
+  result.elementsIn = result.elementsOut = model.shells.size();
+}
+
+void runChainJob(const BatchJob& job, BatchResult& result) {
+  if (!job.settings.empty())
+    throw SettingError("a chain job takes its settings in the chain; use them as {KEY} there");
+  const chain::Chain parsed = chain::parseChain(job.chain);
+  chain::ChainState state;
+  chain::runChain(parsed, state);
+  for (const chain::ChainItem& item : state.stack)
+    if (item.kind == chain::ChainItem::Kind::Deck) {
+      result.elementsIn = item.deck.shells.size();
+      break;
+    }
+  if (!state.stack.empty()) {
+    const chain::ChainItem& top = state.stack.back();
+    if (top.kind == chain::ChainItem::Kind::Deck) result.elementsOut = top.deck.shells.size();
+    if (top.kind == chain::ChainItem::Kind::Mesh) result.elementsOut = top.mesh.faces.size();
+  }
+  std::error_code ignored;
+  if (!std::filesystem::is_regular_file(job.output, ignored))
+    throw std::runtime_error("the chain did not write the job's output " + job.output.string());
+}
+
+BatchResult runJob(const BatchJob& job, const BatchOptions& options) {
+  BatchResult result;
+  result.index = job.index;
+  result.name = job.name;
+  const auto start = std::chrono::steady_clock::now();
+  std::error_code ignored;
+  if (options.resume && std::filesystem::is_regular_file(job.output, ignored) &&
+      std::filesystem::file_size(job.output, ignored) > 0) {
+    result.status = "skipped";
+    result.message = "output exists (--resume)";
+    return result;
+  }
+  try {
+    if (!job.problem.empty()) throw SettingError(job.problem);
+    if (job.output.has_parent_path()) std::filesystem::create_directories(job.output.parent_path());
+    switch (job.task) {
+      case BatchTask::Voxelize:
+        runVoxelize(job, checkSettings(job), result);
+        break;
+      case BatchTask::Convert:
+        runConvert(job, checkSettings(job), result);
+        break;
+      case BatchTask::Chain:
+        runChainJob(job, result);
+        break;
+    }
+    result.status = "ok";
+  } catch (const std::bad_alloc&) {
+    result.status = "failed";
+    result.message = "out of memory";
+  } catch (const std::exception& error) {
+    result.status = "failed";
+    result.message = error.what();
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace
+
+void parseShard(const std::string& text, BatchOptions& options) {
+  const std::size_t slash = text.find('/');
+  const auto whole = [](const std::string& part, unsigned long long& value) {
+    errno = 0;
+    char* end = nullptr;
+    value = std::strtoull(part.c_str(), &end, 10);
+    return !part.empty() && part[0] != '-' && end == part.c_str() + part.size() && errno == 0;
+  };
+  unsigned long long index = 0, count = 0;
+  if (slash == std::string::npos || !whole(text.substr(0, slash), index) ||
+      !whole(text.substr(slash + 1), count) || count == 0 || index >= count)
+    throw SettingError("--shard expects I/N with 0 <= I < N (e.g. 0/4), not '" + text + "'");
+  options.shardIndex = static_cast<std::size_t>(index);
+  options.shardCount = static_cast<std::size_t>(count);
+}
+
+std::vector<BatchResult> runBatch(const std::vector<BatchJob>& jobs, const BatchOptions& options) {
+  if (options.threads < 0) throw SettingError("--threads must be 0 (all cores) or more");
+  if (options.shardCount == 0 || options.shardIndex >= options.shardCount)
+    throw SettingError("the shard index must be below the shard count");
+  std::vector<BatchResult> results(jobs.size());
+  std::vector<std::size_t> mine;
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    if (j % options.shardCount == options.shardIndex) {
+      mine.push_back(j);
+    } else {
+      results[j].index = jobs[j].index;
+      results[j].name = jobs[j].name;
+      results[j].status = "other-shard";
+    }
+  }
+  std::mutex doneMutex;
+  std::size_t done = 0;
+  const int threads =
+      options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mine.size(), 1),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t k = range.begin(); k < range.end(); ++k) {
+                          const std::size_t j = mine[k];
+                          results[j] = runJob(jobs[j], options);
+                          std::lock_guard<std::mutex> lock(doneMutex);
+                          ++done;
+                          if (options.onJobDone) options.onJobDone(results[j], done, mine.size());
+                        }
+                      });
+  });
+  return results;
+}
+
+}  // namespace voxremesh

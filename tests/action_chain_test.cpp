@@ -1,0 +1,196 @@
+// Action chains: parsing (prefixes, types, config files), help, and running chains through the
+// CLI as a subprocess (a chain and its saved config give identical output; bad input).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "support/test_support.h"
+#include "voxremesh/action_chain.h"
+#include "voxremesh/errors.h"
+#include "voxremesh/io.h"
+
+namespace fs = std::filesystem;
+using namespace voxremesh;
+using voxremesh::test::contains;
+using voxremesh::test::quoted;
+using voxremesh::test::readText;
+using voxremesh::test::runCli;
+using voxremesh::test::samplePart;
+using voxremesh::test::scratchDir;
+using voxremesh::test::writeText;
+
+namespace {
+
+std::string settingError(const std::vector<std::string>& args) {
+  try {
+    chain::parseChain(args);
+  } catch (const SettingError& error) {
+    return error.what();
+  }
+  return "(accepted)";
+}
+
+}  // namespace
+
+TEST(ActionChain, PrefixesAndTypedOptions) {
+  const chain::Chain parsed =
+      chain::parseChain({"-rea", "part.k", "-vox", "si=2", "feat=45", "-wr", "out.vdb", "-pri"});
+  ASSERT_EQ(parsed.size(), 4u);
+  EXPECT_EQ(parsed[0].action->name, "read");
+  EXPECT_EQ(parsed[0].text("file"), "part.k");
+  EXPECT_EQ(parsed[1].action->name, "voxelize");
+  EXPECT_TRUE(parsed[1].has("size"));
+  EXPECT_EQ(parsed[1].number("size"), 2.0);
+  EXPECT_EQ(parsed[1].number("feature"), 45.0);
+  EXPECT_FALSE(parsed[1].has("band"));
+  EXPECT_EQ(parsed[1].number("band"), 3.0);  // the default
+  EXPECT_EQ(parsed[2].action->name, "write");
+  EXPECT_EQ(parsed[3].action->name, "print");
+  EXPECT_EQ(parsed[1].origin, "argument 3");
+}
+
+TEST(ActionChain, BadChainsNameTheProblem) {
+  EXPECT_TRUE(contains(settingError({"-s", "x"}), "ambiguous action '-s'"));
+  EXPECT_TRUE(contains(settingError({"-s", "x"}), "-slice, -save-chain"));
+  EXPECT_TRUE(contains(settingError({"-bogus"}), "unknown action '-bogus'"));
+  EXPECT_TRUE(contains(settingError({"-read", "a.k", "-voxelize", "size=big"}),
+                       "-voxelize size (argument 4) expects a number, not 'big'"));
+  EXPECT_TRUE(contains(settingError({"-voxelize", "colour=red"}), "unknown option"));
+  EXPECT_TRUE(contains(settingError({"-voxelize", "x=1"}), "unknown option"));
+  EXPECT_EQ(chain::parseChain({"-voxelize", "s=1"})[0].number("size"), 1.0);  // a prefix
+  EXPECT_TRUE(contains(settingError({"-voxelize", "size=1", "size=2"}), "given twice"));
+  EXPECT_TRUE(contains(settingError({"-slice", "a.png", "at=1"}), "needs axis="));
+  EXPECT_TRUE(
+      contains(settingError({"part.k", "-read"}), "'part.k' (argument 1) is not an action"));
+  EXPECT_TRUE(contains(settingError({"-print", "extra"}), "does not take 'extra'"));
+  EXPECT_TRUE(contains(settingError({"-read"}), "needs file="));
+}
+
+TEST(ActionChain, ConfigFilesAndTheirErrors) {
+  const fs::path dir = scratchDir("chain_config");
+  writeText(dir / "a.cfg",
+            "# a chain\n"
+            "read \"my part.k\"   # quoted\n"
+            "\n"
+            "-voxelize size=2 band=4\n");
+  const chain::Chain parsed = chain::parseConfig(dir / "a.cfg");
+  ASSERT_EQ(parsed.size(), 2u);
+  EXPECT_EQ(parsed[0].text("file"), "my part.k");
+  EXPECT_EQ(parsed[1].origin, (dir / "a.cfg").string() + ":4");
+  // Saved and parsed again: the same actions and values.
+  writeText(dir / "b.cfg", chain::formatChain(parsed));
+  const chain::Chain again = chain::parseConfig(dir / "b.cfg");
+  ASSERT_EQ(again.size(), parsed.size());
+  for (std::size_t i = 0; i < parsed.size(); ++i) {
+    EXPECT_EQ(again[i].action, parsed[i].action);
+    EXPECT_EQ(again[i].values, parsed[i].values);
+    EXPECT_EQ(again[i].given, parsed[i].given);
+  }
+  // -config inside a command line chain.
+  const chain::Chain mixed = chain::parseChain({"-config", (dir / "a.cfg").string(), "-print"});
+  EXPECT_EQ(mixed.size(), 3u);
+
+  const auto inputError = [&](const std::string& text) -> std::string {
+    writeText(dir / "bad.cfg", text);
+    try {
+      chain::parseConfig(dir / "bad.cfg");
+    } catch (const InputError& error) {
+      EXPECT_EQ(error.file(), (dir / "bad.cfg").string());
+      return std::to_string(error.line()) + ": " + error.what();
+    }
+    return "(accepted)";
+  };
+  EXPECT_TRUE(contains(inputError("read a.k\nvoxelize size=x\n"), "2: "));
+  EXPECT_TRUE(contains(inputError("read a.k\n\ns file=x\n"), "3: "));
+  EXPECT_TRUE(contains(inputError("read a.k\n\ns file=x\n"), "ambiguous action '-s'"));
+  EXPECT_TRUE(contains(inputError("read a.k -print\n"), "one action per line"));
+  EXPECT_TRUE(contains(inputError("read \"a.k\n"), "unterminated double quote"));
+  writeText(dir / "self.cfg", "config " + (dir / "self.cfg").string() + "\n");
+  EXPECT_THROW(chain::parseConfig(dir / "self.cfg"), InputError);
+  EXPECT_THROW(chain::parseConfig(dir / "missing.cfg"), InputError);
+}
+
+TEST(ActionChain, Help) {
+  const std::string all = chain::chainHelp();
+  for (const chain::ActionDef& action : chain::actions())
+    EXPECT_TRUE(contains(all, "-" + action.name)) << action.name;
+  const std::string one = chain::chainHelp("vox");
+  EXPECT_TRUE(contains(one, "-voxelize:"));
+  EXPECT_TRUE(contains(one, "size="));
+  EXPECT_THROW(chain::chainHelp("nothing"), SettingError);
+}
+
+TEST(ActionChainCli, ChainAndItsConfigGiveIdenticalOutput) {
+  const fs::path dir = scratchDir("chain_cli");
+  const std::string sample = quoted(samplePart());
+  const auto first =
+      runCli("-read " + sample + " -voxelize size=6 -write " + quoted(dir / "a.vdb") +
+             " -print -slice " + quoted(dir / "a.png") + " axis=z at=20 -read " + sample +
+             " -write " + quoted(dir / "a.bdf") + " -save-chain " + quoted(dir / "chain.cfg"));
+  ASSERT_EQ(first.exitCode, 0) << first.output;
+  EXPECT_TRUE(contains(first.output, "voxelized part"));
+  EXPECT_TRUE(contains(first.output, "sdf"));  // -print of the volume
+  // Replay with the outputs renamed: the same files.
+  std::string config = readText(dir / "chain.cfg");
+  for (const char* ext : {".vdb", ".png", ".bdf"}) {
+    const std::string from = (dir / (std::string("a") + ext)).string();
+    config.replace(config.find(from), from.size(), (dir / (std::string("b") + ext)).string());
+  }
+  writeText(dir / "replay.cfg", config);
+  const auto second = runCli("-config " + quoted(dir / "replay.cfg"));
+  ASSERT_EQ(second.exitCode, 0) << second.output;
+  for (const char* ext : {".png", ".bdf"})
+    EXPECT_EQ(readText(dir / (std::string("a") + ext)), readText(dir / (std::string("b") + ext)))
+        << ext;
+  // A .vdb file holds a random UUID in its header: compare what the grids hold instead.
+  const auto inspectA = runCli("inspect --json " + quoted(dir / "a.vdb"));
+  const auto inspectB = runCli("inspect --json " + quoted(dir / "b.vdb"));
+  ASSERT_EQ(inspectA.exitCode, 0) << inspectA.output;
+  EXPECT_EQ(inspectA.output, inspectB.output);
+}
+
+TEST(ActionChainCli, HelpAndBadInput) {
+  const fs::path dir = scratchDir("chain_cli_bad");
+  const auto help = runCli("-help");
+  EXPECT_EQ(help.exitCode, 0);
+  EXPECT_TRUE(contains(help.output, "-voxelize"));
+  const auto one = runCli("-help slice");
+  EXPECT_EQ(one.exitCode, 0);
+  EXPECT_TRUE(contains(one.output, "axis="));
+  const auto unknown = runCli("-frobnicate");
+  EXPECT_EQ(unknown.exitCode, 2);
+  EXPECT_TRUE(contains(unknown.output, "unknown action '-frobnicate'")) << unknown.output;
+  // A bad value fails before anything runs: no output file.
+  const auto bad = runCli("-read " + quoted(samplePart()) + " -write " + quoted(dir / "x.k") +
+                          " -voxelize size=-1x");
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_FALSE(fs::exists(dir / "x.k"));
+  // A missing input names the file; a volume cannot be written as a deck.
+  const auto missing = runCli("-read " + quoted(dir / "none.k") + " -write " + quoted(dir / "y.k"));
+  EXPECT_EQ(missing.exitCode, 1);
+  EXPECT_TRUE(contains(missing.output, "none.k")) << missing.output;
+  EXPECT_FALSE(fs::exists(dir / "y.k"));
+  const auto wrongKind =
+      runCli("-read " + quoted(samplePart()) + " -voxelize size=8 -write " + quoted(dir / "z.k"));
+  EXPECT_EQ(wrongKind.exitCode, 1);
+  EXPECT_TRUE(contains(wrongKind.output, "-write (argument 5)")) << wrongKind.output;
+  EXPECT_FALSE(fs::exists(dir / "z.k"));
+  writeText(dir / "bad.cfg", "read a.k\nslice axis=q\n");
+  const auto config = runCli("-config " + quoted(dir / "bad.cfg"));
+  EXPECT_EQ(config.exitCode, 1);
+  EXPECT_TRUE(contains(config.output, "bad.cfg:2")) << config.output;
+}
+
+TEST(ActionChainCli, ExtractWritesTheMeshIntoItsDeck) {
+  const fs::path dir = scratchDir("chain_extract");
+  const auto run = runCli("-read " + quoted(samplePart()) +
+                          " -voxelize size=5 -extract -print -write " + quoted(dir / "out.k"));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "extracted part 100")) << run.output;
+  EXPECT_TRUE(contains(run.output, "part 100 replaced in")) << run.output;
+  const FeModel out = readDeck(dir / "out.k");
+  EXPECT_GT(out.shells.size(), 1000u);
+  for (const Shell& shell : out.shells) EXPECT_EQ(shell.part, 100);
+}

@@ -1,0 +1,192 @@
+// Scripted batch: job files (structure, globs, variants), parallel runs where a broken job does
+// not stop the others, --resume, --shard, and the summaries; through the library and the CLI.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "json/json.h"
+#include "support/test_support.h"
+#include "voxremesh/batch.h"
+#include "voxremesh/errors.h"
+#include "voxremesh/io.h"
+
+namespace fs = std::filesystem;
+using namespace voxremesh;
+using voxremesh::test::contains;
+using voxremesh::test::quoted;
+using voxremesh::test::readText;
+using voxremesh::test::runCli;
+using voxremesh::test::samplePart;
+using voxremesh::test::scratchDir;
+using voxremesh::test::writeText;
+
+namespace {
+
+/// A job file with two good conversions, one missing input and one invalid setting.
+std::string mixedJobs(const fs::path& sample) {
+  return "{\n"
+         "  \"threads\": 2,\n"
+         "  \"jobs\": [\n"
+         "    {\"task\": \"convert\", \"input\": \"" +
+         sample.string() +
+         "\", \"output\": \"out/{stem}.bdf\"},\n"
+         "    {\"task\": \"convert\", \"name\": \"broken\", \"input\": \"missing.k\", "
+         "\"output\": \"out/missing.obj\"},\n"
+         "    {\"task\": \"voxelize\", \"name\": \"bad-size\", \"input\": \"" +
+         sample.string() +
+         "\", \"output\": \"out/bad.vdb\", \"settings\": {\"size\": -2}},\n"
+         "    {\"task\": \"convert\", \"name\": \"obj\", \"input\": \"" +
+         sample.string() +
+         "\", \"output\": \"out/{name}.obj\"}\n"
+         "  ]\n"
+         "}\n";
+}
+
+std::string inputErrorOf(const fs::path& file, const std::string& text) {
+  writeText(file, text);
+  try {
+    readBatchFile(file);
+  } catch (const InputError& error) {
+    return std::to_string(error.line()) + ": " + error.what();
+  }
+  return "(accepted)";
+}
+
+}  // namespace
+
+TEST(Batch, JobFileExpansion) {
+  const fs::path dir = scratchDir("batch_expand");
+  writeText(dir / "decks" / "a.k", "*KEYWORD\n*END\n");
+  writeText(dir / "decks" / "b.k", "*KEYWORD\n*END\n");
+  writeText(dir / "decks" / "c.txt", "x\n");
+  writeText(dir / "jobs.json",
+            R"({"defaults": {"band": 4},
+ "jobs": [
+  {"task": "voxelize", "inputs": "decks/*.k", "output": "out/{stem}_{size}.vdb",
+   "settings": {"size": 2}, "variants": [{"size": 1}, {"size": 3, "format": "k"}]},
+  {"task": "chain", "name": "c", "input": "decks/a.k", "output": "x/{name}.vdb",
+   "chain": ["-read", "{input}", "-write", "{output}"]}
+ ]})");
+  const BatchFile file = readBatchFile(dir / "jobs.json");
+  ASSERT_EQ(file.jobs.size(), 5u);
+  EXPECT_EQ(file.jobs[0].name, "a-1");
+  EXPECT_EQ(file.jobs[0].output, dir / "out" / "a_1.vdb");
+  EXPECT_EQ(file.jobs[1].output, dir / "out" / "a_3.vdb");
+  EXPECT_EQ(file.jobs[1].settings.at("format"), "k");
+  EXPECT_EQ(file.jobs[1].settings.at("band"), "4");
+  EXPECT_EQ(file.jobs[2].input, dir / "decks" / "b.k");
+  EXPECT_EQ(file.jobs[3].name, "b-2");
+  EXPECT_EQ(file.jobs[4].task, BatchTask::Chain);
+  EXPECT_EQ(file.jobs[4].chain[1], (dir / "decks" / "a.k").string());
+  EXPECT_EQ(file.jobs[4].chain[3], (dir / "x" / "c.vdb").string());
+  EXPECT_EQ(file.jobs[4].index, 4u);
+
+  const fs::path bad = dir / "bad.json";
+  EXPECT_TRUE(contains(inputErrorOf(bad, "{\"jobs\": [}\n"), "1: "));
+  EXPECT_TRUE(contains(inputErrorOf(bad, "{\n\"jobs\": []\n}"), "non-empty"));
+  EXPECT_TRUE(contains(inputErrorOf(bad,
+                                    "{\"jobs\": [\n{\"task\": \"voxelize\", \"input\": "
+                                    "\"a.k\", \"output\": \"a.vdb\", \"colour\": 1}]}"),
+                       "2: "));
+  EXPECT_TRUE(contains(inputErrorOf(bad,
+                                    "{\"jobs\": [{\"task\": \"fly\", \"input\": \"a.k\", "
+                                    "\"output\": \"a.vdb\"}]}"),
+                       "unknown task \"fly\""));
+  EXPECT_TRUE(contains(inputErrorOf(bad,
+                                    "{\"jobs\": [{\"task\": \"convert\", \"inputs\": "
+                                    "\"none/*.k\", \"output\": \"a.bdf\"}]}"),
+                       "no file matches"));
+  EXPECT_TRUE(contains(inputErrorOf(bad,
+                                    "{\"jobs\": [{\"task\": \"convert\", \"input\": "
+                                    "\"a.k\"}]}"),
+                       "no \"output\""));
+  EXPECT_TRUE(contains(inputErrorOf(bad,
+                                    "{\"jobs\": [{\"task\": \"convert\", \"input\": "
+                                    "\"a.k\", \"output\": \"a.bdf\", \"settings\": "
+                                    "{\"size\": [1]}}]}"),
+                       "must be a number or a string"));
+  EXPECT_THROW(readBatchFile(dir / "nothing.json"), InputError);
+}
+
+TEST(Batch, BrokenJobsFailAloneAndShardsSplitTheWork) {
+  const fs::path dir = scratchDir("batch_run");
+  writeText(dir / "jobs.json", mixedJobs(samplePart()));
+  const BatchFile file = readBatchFile(dir / "jobs.json");
+  BatchOptions options;
+  options.threads = 2;
+  std::vector<BatchResult> results = runBatch(file.jobs, options);
+  ASSERT_EQ(results.size(), 4u);
+  EXPECT_EQ(results[0].status, "ok");
+  EXPECT_EQ(results[1].status, "failed");
+  EXPECT_TRUE(contains(results[1].message, "missing.k")) << results[1].message;
+  EXPECT_EQ(results[2].status, "failed");
+  EXPECT_TRUE(contains(results[2].message, "size")) << results[2].message;
+  EXPECT_EQ(results[3].status, "ok");
+  EXPECT_FALSE(fs::exists(dir / "out" / "missing.obj"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "bad.vdb"));
+  const FeModel converted = readDeck(dir / "out" / "hat_rail.bdf");
+  EXPECT_EQ(results[0].elementsIn, converted.shells.size());
+
+  // The summary: one row per job, unknown values empty / null.
+  const std::string csv = batchSummaryCsv(file.jobs, results);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5);
+  EXPECT_TRUE(contains(csv, ",failed,")) << csv;
+  const json::Json summary = json::parseJson(batchSummaryJson(file.jobs, results));
+  EXPECT_EQ(summary["ok"].number, 2);
+  EXPECT_EQ(summary["failed"].number, 2);
+  EXPECT_EQ(summary["jobs"].items[0]["quality_failures"].type, json::Json::Type::Null);
+
+  // --resume skips the finished jobs; the broken ones fail again.
+  options.resume = true;
+  results = runBatch(file.jobs, options);
+  EXPECT_EQ(results[0].status, "skipped");
+  EXPECT_EQ(results[1].status, "failed");
+  EXPECT_EQ(results[3].status, "skipped");
+
+  // Shards: every job in exactly one shard.
+  options.resume = false;
+  parseShard("1/2", options);
+  results = runBatch(file.jobs, options);
+  EXPECT_EQ(results[0].status, "other-shard");
+  EXPECT_EQ(results[1].status, "failed");
+  EXPECT_EQ(results[2].status, "other-shard");
+  EXPECT_EQ(results[3].status, "ok");
+  EXPECT_THROW(parseShard("2/2", options), SettingError);
+  EXPECT_THROW(parseShard("-1/2", options), SettingError);
+  EXPECT_THROW(parseShard("1", options), SettingError);
+}
+
+TEST(BatchCli, OneBrokenJobThenResume) {
+  const fs::path dir = scratchDir("batch_cli");
+  writeText(dir / "jobs.json", mixedJobs(samplePart()));
+  const auto first = runCli("batch " + quoted(dir / "jobs.json") + " --threads 2");
+  EXPECT_EQ(first.exitCode, 1) << first.output;
+  EXPECT_TRUE(contains(first.output, "FAILED broken")) << first.output;
+  EXPECT_TRUE(contains(first.output, "2 ok, 2 failed, 0 skipped")) << first.output;
+  EXPECT_FALSE(contains(first.output, "\r"));  // no progress line off a terminal
+  EXPECT_TRUE(fs::exists(dir / "out" / "hat_rail.bdf"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "obj.obj"));
+  const std::string csv = readText(dir / "jobs.summary.csv");
+  EXPECT_TRUE(contains(csv, "broken")) << csv;
+  EXPECT_NO_THROW(json::parseJson(readText(dir / "jobs.summary.json")));
+
+  const auto resumed = runCli("batch " + quoted(dir / "jobs.json") + " --resume");
+  EXPECT_EQ(resumed.exitCode, 1);
+  EXPECT_TRUE(contains(resumed.output, "0 ok, 2 failed, 2 skipped")) << resumed.output;
+
+  // Sharded runs write their own summaries.
+  const auto shard = runCli("batch " + quoted(dir / "jobs.json") + " --shard 0/2 --resume");
+  EXPECT_TRUE(fs::exists(dir / "jobs.shard0of2.summary.csv")) << shard.output;
+
+  // A broken job file: message with file and line, exit 1, no summary.
+  writeText(dir / "bad.json", "{\"jobs\": [\n  {\"task\": \"convert\",}\n]}\n");
+  const auto bad = runCli("batch " + quoted(dir / "bad.json"));
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_TRUE(contains(bad.output, "bad.json:2")) << bad.output;
+  EXPECT_FALSE(fs::exists(dir / "bad.summary.csv"));
+  const auto usage = runCli("batch " + quoted(dir / "jobs.json") + " --shard 3");
+  EXPECT_EQ(usage.exitCode, 1);
+  EXPECT_TRUE(contains(usage.output, "--shard expects I/N")) << usage.output;
+}

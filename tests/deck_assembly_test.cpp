@@ -1,0 +1,365 @@
+// Deck assembly: remeshed parts put back into LS-DYNA, Nastran and Abaqus decks; new IDs, seams,
+// node reference remapping and what stays byte for byte.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "support/test_support.h"
+#include "voxremesh/deck_assembly.h"
+#include "voxremesh/io.h"
+
+using namespace voxremesh;
+using voxremesh::test::readText;
+using voxremesh::test::scratchDir;
+using voxremesh::test::writeText;
+
+namespace {
+
+// Two unit quads side by side: shell 1 of part 1 (nodes 1 2 5 4) and shell 2 of part 2
+// (2 3 6 5); nodes 2 and 5 are the seam.
+const char* const kDeck =
+    "*KEYWORD\n"
+    "*NODE\n"
+    "       1             0.0             0.0             0.0\n"
+    "       2             1.0             0.0             0.0\n"
+    "       3             2.0             0.0             0.0\n"
+    "       4             0.0             1.0             0.0\n"
+    "       5             1.0             1.0             0.0\n"
+    "       6             2.0             1.0             0.0\n"
+    "*ELEMENT_SHELL\n"
+    "       1       1       1       2       5       4\n"
+    "       2       2       2       3       6       5\n"
+    "*SET_NODE_LIST\n"
+    "$#     sid       da1\n"
+    "         7       0.0       0.0       0.0       0.0\n"
+    "         1         4         2\n"
+    "*SET_NODE_LIST_GENERATE\n"
+    "         8\n"
+    "         1         1\n"
+    "*CONSTRAINED_WIDGET_NODE\n"
+    "         4\n"
+    "*ELEMENT_MASS\n"
+    "   90000       2             1.0       0\n"
+    "*DATABASE_HISTORY_NODE\n"
+    "1,5\n"
+    "*END\n";
+
+/// The new mesh of part 1: two quads over the old one, its first point moved by 0.05.
+QuadMesh newPartOne() {
+  QuadMesh mesh;
+  mesh.part = 1;
+  mesh.points = {{0.05, 0, 0}, {0.5, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.5, 1, 0}, {1, 1, 0}};
+  mesh.faces = {{0, 1, 4, 3}, {1, 2, 5, 4}};
+  return mesh;
+}
+
+/// The verbatim block whose text starts with `keyword` followed by a line end.
+const DeckBlock& block(const FeModel& model, const std::string& keyword) {
+  for (const DeckBlock& b : model.blocks)
+    if (b.kind == DeckBlock::Kind::Verbatim && b.text.rfind(keyword + "\n", 0) == 0) return b;
+  throw std::runtime_error("no block " + keyword);
+}
+
+/// Two unit quads side by side on nodes 1..6 (x = 0, 1, 2; y = 0, 1): shell 1 of `partA`, shell 2
+/// of `partB`.
+FeModel twoQuads(Id partA, Id partB) {
+  FeModel model;
+  model.sourceFormat = DeckFormat::LsDyna;
+  for (Id i = 1; i <= 6; ++i)
+    test::addNode(model, i, static_cast<double>((i - 1) % 3), static_cast<double>((i - 1) / 3));
+  test::addShell(model, 1, partA, {1, 2, 5, 4});
+  test::addShell(model, 2, partB, {2, 3, 6, 5});
+  return model;
+}
+
+std::map<Id, std::array<double, 3>> nodesById(const FeModel& model) {
+  std::map<Id, std::array<double, 3>> nodes;
+  for (const Node& node : model.nodes) nodes[node.id] = node.xyz;
+  return nodes;
+}
+
+}  // namespace
+
+TEST(DeckAssembly, LsDynaSeamIdsAndRemaps) {
+  const auto dir = scratchDir("assembly_lsdyna");
+  writeText(dir / "in.k", kDeck);
+  FeModel model = readDeck(dir / "in.k");
+  const FeModel before = model;
+  const AssemblyReport report = replacePartMeshes(model, {newPartOne()});
+
+  // New nodes from 7; the seam points at (1,0,0) and (1,1,0) are the kept nodes 2 and 5.
+  EXPECT_EQ(report.firstNewNodeId, 7);
+  EXPECT_EQ(report.newNodes, 4u);
+  EXPECT_EQ(report.seamPoints, 2u);
+  // Element IDs above the *ELEMENT_MASS ID 90000.
+  EXPECT_EQ(report.firstNewElementId, 90001);
+  ASSERT_EQ(model.shells.size(), 3u);
+  EXPECT_EQ(model.shells[0].id, 2);  // the kept shell first
+  EXPECT_EQ(model.shells[1].id, 90001);
+  EXPECT_EQ(model.shells[1].part, 1);
+  EXPECT_EQ((std::array<Id, 4>{7, 8, 10, 9}), model.shells[1].nodes);
+  EXPECT_EQ((std::array<Id, 4>{8, 2, 5, 10}), model.shells[2].nodes);
+
+  // Node 1 is in a *SET_NODE_LIST (remapped to 7 at 0.05) and in a generated range (unmapped,
+  // so it is kept); node 4 is in the list (remapped to 9 at 0) and in an unknown keyword.
+  ASSERT_EQ(report.remaps.size(), 3u);
+  EXPECT_EQ(report.remaps[0].keyword, "*SET_NODE_LIST");
+  EXPECT_EQ(report.remaps[0].oldNode, 1);
+  EXPECT_EQ(report.remaps[0].newNode, 7);
+  EXPECT_NEAR(report.remaps[0].distance, 0.05, 1e-15);
+  EXPECT_EQ(report.remaps[0].line, 15u);
+  EXPECT_FALSE(report.remaps[0].blockLine);
+  EXPECT_EQ(report.remaps[1].oldNode, 4);
+  EXPECT_EQ(report.remaps[1].newNode, 9);
+  EXPECT_EQ(report.remaps[1].distance, 0.0);
+  EXPECT_EQ(report.remaps[2].keyword, "*DATABASE_HISTORY_NODE");
+  EXPECT_EQ(report.remaps[2].oldNode, 1);
+  EXPECT_EQ(report.remaps[2].newNode, 7);
+  ASSERT_EQ(report.unmapped.size(), 2u);
+  EXPECT_EQ(report.unmapped[0].keyword, "*SET_NODE_LIST_GENERATE");
+  EXPECT_EQ(report.unmapped[0].node, 1);
+  EXPECT_EQ(report.unmapped[0].line, 18u);
+  EXPECT_EQ(report.unmapped[1].keyword, "*CONSTRAINED_WIDGET_NODE");
+  EXPECT_EQ(report.unmapped[1].node, 4);
+  EXPECT_EQ(report.keptOldNodes, 2u);
+  EXPECT_EQ(report.removedNodes, 0u);
+  const auto nodes = nodesById(model);
+  EXPECT_TRUE(nodes.count(1) && nodes.count(4));
+
+  // Rewritten fields keep their columns; the other blocks are unchanged.
+  EXPECT_EQ(block(model, "*SET_NODE_LIST").text,
+            "*SET_NODE_LIST\n"
+            "$#     sid       da1\n"
+            "         7       0.0       0.0       0.0       0.0\n"
+            "         7         9         2\n");
+  EXPECT_EQ(block(model, "*DATABASE_HISTORY_NODE").text, "*DATABASE_HISTORY_NODE\n7,5\n");
+  for (const char* keyword :
+       {"*SET_NODE_LIST_GENERATE", "*CONSTRAINED_WIDGET_NODE", "*ELEMENT_MASS", "*END"})
+    EXPECT_EQ(block(model, keyword).text, block(before, keyword).text) << keyword;
+
+  // The written deck reads back with the new mesh.
+  writeDeck(model, dir / "out.k");
+  const FeModel back = readDeck(dir / "out.k");
+  EXPECT_EQ(back.shells.size(), 3u);
+  EXPECT_EQ(back.nodes.size(), model.nodes.size());
+  EXPECT_NE(readText(dir / "out.k").find("         7         9         2\n"), std::string::npos);
+}
+
+TEST(DeckAssembly, UnreferencedOldNodesAreRemoved) {
+  const auto dir = scratchDir("assembly_removed");
+  std::string deck = kDeck;
+  // Without the range and the unknown keyword, nodes 1 and 4 go.
+  deck.replace(deck.find("*SET_NODE_LIST_GENERATE"),
+               deck.find("*ELEMENT_MASS") - deck.find("*SET_NODE_LIST_GENERATE"), "");
+  writeText(dir / "in.k", deck);
+  FeModel model = readDeck(dir / "in.k");
+  const AssemblyReport report = replacePartMeshes(model, {newPartOne()});
+  EXPECT_TRUE(report.unmapped.empty());
+  EXPECT_EQ(report.removedNodes, 2u);
+  const auto nodes = nodesById(model);
+  EXPECT_EQ(nodes.count(1) + nodes.count(4), 0u);
+  EXPECT_EQ(nodes.size(), 8u);  // 2 3 5 6 kept, 7..10 new
+}
+
+TEST(DeckAssembly, JunctionPointsOfTwoRemeshedPartsBecomeOneNode) {
+  FeModel model = twoQuads(1, 2);
+  QuadMesh a, b;
+  a.part = 1;
+  a.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  a.faces = {{0, 1, 2, 3}};
+  a.constraints.assign(4, PointConstraint{});
+  a.constraints[1].role = a.constraints[2].role = PointRole::Junction;
+  b.part = 2;
+  b.points = {{1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}};
+  b.faces = {{0, 1, 2, 3}};
+  b.constraints.assign(4, PointConstraint{});
+  b.constraints[0].role = b.constraints[3].role = PointRole::Junction;
+  const AssemblyReport report = replacePartMeshes(model, {a, b});
+  EXPECT_EQ(report.mergedJunctionPoints, 2u);
+  EXPECT_EQ(report.newNodes, 6u);
+  EXPECT_EQ(report.removedNodes, 6u);
+  ASSERT_EQ(model.shells.size(), 2u);
+  EXPECT_EQ(model.shells[0].nodes[1], model.shells[1].nodes[0]);
+  EXPECT_EQ(model.shells[0].nodes[2], model.shells[1].nodes[3]);
+  EXPECT_EQ(model.nodes.size(), 6u);
+  EXPECT_EQ(model.nodes.front().id, 7);
+  // Without the Junction role, coincident points stay apart.
+  FeModel again = twoQuads(1, 2);
+  a.constraints.clear();
+  EXPECT_EQ(replacePartMeshes(again, {a, b}).mergedJunctionPoints, 0u);
+}
+
+TEST(DeckAssembly, TypesAndExtrasComeFromTheOldShells) {
+  FeModel model = twoQuads(1, 1);
+  const std::uint8_t thick = model.internShellType("_THICKNESS");
+  for (Shell& shell : model.shells) shell.type = thick;
+  model.shellExtras.resize(2);
+  model.shellExtras[0].thickness = {1, 1, 1, 1};
+  model.shellExtras[1].thickness = {2, 2, 2, 2};
+  model.shells[0].extras = 0;
+  model.shells[1].extras = 1;
+  QuadMesh mesh;
+  mesh.part = 1;
+  mesh.points = {{0, 0, 0}, {0.9, 0, 0}, {0.9, 1, 0}, {0, 1, 0}, {2, 0, 0}, {2, 1, 0}};
+  mesh.faces = {{0, 1, 2, 3}, {1, 4, 5, kNoCorner}};
+  replacePartMeshes(model, {mesh});
+  ASSERT_EQ(model.shells.size(), 2u);
+  EXPECT_EQ(model.shells[0].type, thick);
+  EXPECT_EQ(model.shells[0].extras, 0);  // centroid x 0.45: nearer the first old shell
+  EXPECT_EQ(model.shells[1].extras, 1);
+  EXPECT_EQ(model.shells[1].nodeCount, 3);
+}
+
+TEST(DeckAssembly, NastranFieldsAreRewrittenInTheirColumns) {
+  const auto dir = scratchDir("assembly_nastran");
+  writeText(dir / "in.bdf",
+            "BEGIN BULK\n"
+            "GRID           1              0.      0.      0.\n"
+            "GRID           2              1.      0.      0.\n"
+            "GRID           3              1.      1.      0.\n"
+            "GRID           4              0.      1.      0.\n"
+            "CQUAD4       101       1       1       2       3       4\n"
+            "SPC1         100  123456       1       4\n"
+            "RBE2        5000    9999  123456       4       1\n"
+            "CONM2,6000,3,0,1.5\n"
+            "SPC1         200     123       1    THRU       4\n"
+            "PSHELL         1       1     1.0\n"
+            "MAT1           1  2.1+5            .3\n"
+            "ENDDATA\n");
+  FeModel model = readDeck(dir / "in.bdf");
+  QuadMesh mesh;
+  mesh.part = 1;
+  mesh.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0.25}};
+  mesh.faces = {{0, 1, 2, 3}};
+  const AssemblyReport report = replacePartMeshes(model, {mesh});
+  EXPECT_EQ(report.firstNewNodeId, 5);
+  EXPECT_EQ(report.firstNewElementId, 6001);  // above the CONM2 EID 6000
+  ASSERT_EQ(report.remaps.size(), 5u);
+  EXPECT_EQ(report.remaps[0].keyword, "SPC1");
+  EXPECT_TRUE(report.remaps[0].blockLine);
+  ASSERT_EQ(report.unmapped.size(), 4u);  // SPC1 THRU covers 1..4
+  EXPECT_EQ(report.unmapped[0].keyword, "SPC1");
+  writeDeck(model, dir / "out.bdf");
+  const std::string out = readText(dir / "out.bdf");
+  EXPECT_NE(out.find("SPC1         100  123456       5       8\n"), std::string::npos) << out;
+  EXPECT_NE(out.find("RBE2        5000    9999  123456       8       5\n"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("CONM2,6000,7,0,1.5\n"), std::string::npos) << out;
+  EXPECT_NE(out.find("SPC1         200     123       1    THRU       4\n"), std::string::npos);
+  const FeModel back = readDeck(dir / "out.bdf");
+  EXPECT_EQ(back.shells.size(), 1u);
+}
+
+TEST(DeckAssembly, AbaqusNsetAndBoundary) {
+  const auto dir = scratchDir("assembly_abaqus");
+  writeText(dir / "in.inp",
+            "*NODE\n"
+            "1, 0., 0., 0.\n"
+            "2, 1., 0., 0.\n"
+            "3, 1., 1., 0.\n"
+            "4, 0., 1., 0.\n"
+            "*ELEMENT, TYPE=S4R, ELSET=PLATE\n"
+            "1, 1, 2, 3, 4\n"
+            "*NSET, NSET=FIX\n"
+            "1, 2, FIXSET\n"
+            "*BOUNDARY\n"
+            "3, 1, 6\n"
+            "*NSET, NSET=GEN, GENERATE\n"
+            "1, 4, 1\n");
+  FeModel model = readDeck(dir / "in.inp");
+  ASSERT_EQ(model.parts.size(), 1u);
+  QuadMesh mesh;
+  mesh.part = model.parts[0].id;
+  mesh.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  mesh.faces = {{0, 1, 2, 3}};
+  const AssemblyReport report = replacePartMeshes(model, {mesh});
+  ASSERT_EQ(report.remaps.size(), 3u);
+  EXPECT_EQ(report.remaps[0].keyword, "*NSET");
+  EXPECT_EQ(report.remaps[2].keyword, "*BOUNDARY");
+  EXPECT_EQ(report.unmapped.size(), 4u);
+  writeDeck(model, dir / "out.inp");
+  const std::string out = readText(dir / "out.inp");
+  EXPECT_NE(out.find("5, 6, FIXSET\n"), std::string::npos) << out;
+  EXPECT_NE(out.find("7, 1, 6\n"), std::string::npos) << out;
+  EXPECT_NE(out.find("1, 4, 1\n"), std::string::npos) << out;
+  EXPECT_EQ(readDeck(dir / "out.inp").shells.size(), 1u);
+}
+
+TEST(DeckAssembly, BadMeshesLeaveTheModelUnchanged) {
+  FeModel model;
+  model.sourceFormat = DeckFormat::LsDyna;
+  for (Id i = 1; i <= 4; ++i)
+    test::addNode(model, i, static_cast<double>((i - 1) % 2), static_cast<double>((i - 1) / 2));
+  test::addShell(model, 1, 1, {1, 2, 4, 3});
+  QuadMesh good;
+  good.part = 1;
+  good.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}};
+  good.faces = {{0, 1, 2, kNoCorner}};
+  const auto expectRefused = [&](std::vector<QuadMesh> meshes, const std::string& text) {
+    FeModel copy = model;
+    try {
+      replacePartMeshes(copy, meshes);
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find(text), std::string::npos) << error.what();
+    }
+    EXPECT_EQ(copy.shells.size(), 1u);
+    EXPECT_EQ(copy.nodes.size(), 4u);
+  };
+  QuadMesh noPart = good;
+  noPart.part = 0;
+  expectRefused({noPart}, "part 0");
+  QuadMesh missing = good;
+  missing.part = 7;
+  expectRefused({missing}, "part 7 has no shells");
+  expectRefused({good, good}, "given twice");
+  QuadMesh outOfRange = good;
+  outOfRange.faces[0][2] = 3;
+  expectRefused({outOfRange}, "names point 3");
+  QuadMesh nan = good;
+  nan.points[0][1] = std::numeric_limits<double>::quiet_NaN();
+  expectRefused({nan}, "non-finite");
+}
+
+TEST(DeckAssembly, BirdKeepsSphAndEveryOtherKeyword) {
+  VOXREMESH_REQUIRE_SHARED_DECK(path, "bird.k");
+  FeModel model = readDeck(path);
+  const FeModel before = model;
+  std::set<Id> shellParts;
+  for (const Shell& shell : model.shells) shellParts.insert(shell.part);
+  std::vector<QuadMesh> meshes;
+  for (const Id part : shellParts) meshes.push_back(quadMeshFromModel(model, part));
+  const AssemblyReport report = replacePartMeshes(model, meshes);
+  // The same surfaces again: every reference moves to a new node at distance 0.
+  for (const NodeRemap& remap : report.remaps) EXPECT_EQ(remap.distance, 0.0);
+  EXPECT_TRUE(report.unmapped.empty());
+  // Only the keywords naming plate nodes change: the node set and the initial velocities.
+  std::set<std::string> changed;
+  ASSERT_EQ(model.blocks.size(), before.blocks.size());
+  for (std::size_t b = 0; b < model.blocks.size(); ++b)
+    if (model.blocks[b].text != before.blocks[b].text)
+      changed.insert(model.blocks[b].text.substr(0, model.blocks[b].text.find('\n')));
+  EXPECT_EQ(changed, (std::set<std::string>{"*INITIAL_VELOCITY_NODE", "*SET_NODE_LIST"}));
+  EXPECT_FALSE(report.remaps.empty());
+  EXPECT_EQ(model.shells.size(), before.shells.size());
+  EXPECT_EQ(model.nodes.size(), before.nodes.size());
+  const auto dir = scratchDir("assembly_bird");
+  writeDeck(model, dir / "bird.k");
+  const std::string out = readText(dir / "bird.k");
+  const std::string in = readText(path);
+  const auto blockOf = [](const std::string& text, const std::string& keyword) {
+    const std::size_t begin = text.find("\n" + keyword + "\n");
+    const std::size_t end = text.find("\n*", begin + 1);
+    return text.substr(begin, end - begin);
+  };
+  EXPECT_EQ(blockOf(out, "*ELEMENT_SPH"), blockOf(in, "*ELEMENT_SPH"));
+  EXPECT_EQ(blockOf(out, "*SET_NODE_LIST_GENERATE"), blockOf(in, "*SET_NODE_LIST_GENERATE"));
+  EXPECT_EQ(blockOf(out, "*CONSTRAINED_EXTRA_NODES_SET"),
+            blockOf(in, "*CONSTRAINED_EXTRA_NODES_SET"));
+  EXPECT_EQ(readDeck(dir / "bird.k").shells.size(), before.shells.size());
+}

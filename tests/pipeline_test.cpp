@@ -1,0 +1,146 @@
+// The pipeline's planning stage and the progress line.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "support/test_support.h"
+#include "voxremesh/errors.h"
+#include "voxremesh/io.h"
+#include "voxremesh/pipeline.h"
+#include "voxremesh/progress.h"
+
+using namespace voxremesh;
+
+namespace {
+
+FeModel twoParts() {
+  FeModel model;
+  for (Id i = 1; i <= 6; ++i)
+    test::addNode(model, i, static_cast<double>((i - 1) % 3) * (i > 3 ? 1.0 : 1.0),
+                  static_cast<double>((i - 1) / 3) * 2.0);
+  test::addShell(model, 1, 10, {1, 2, 5, 4});  // sides 1, 2, 1, 2: median 1.5
+  test::addShell(model, 2, 20, {2, 3, 6});
+  model.partOrAdd(10, "left");
+  model.partOrAdd(20);
+  model.partOrAdd(30, "no shells");
+  return model;
+}
+
+}  // namespace
+
+TEST(Pipeline, PlansPartsAndTargetSizes) {
+  const FeModel model = twoParts();
+  EXPECT_EQ(shellPartIds(model), (std::vector<Id>{10, 20}));
+  EXPECT_DOUBLE_EQ(defaultTargetSize(model, 10), 1.5);
+  EXPECT_DOUBLE_EQ(defaultTargetSize(model, 20), 2.0);  // 1, 2, sqrt 5
+  RemeshSettings settings;
+  std::vector<PartPlan> plans = planRemesh(model, settings);
+  ASSERT_EQ(plans.size(), 2u);
+  EXPECT_EQ(plans[0].name, "left");
+  EXPECT_EQ(plans[0].shells, 1u);
+  EXPECT_DOUBLE_EQ(plans[0].targetSize, 1.5);
+  settings.targetSize = 0.5;
+  settings.parts = {20};
+  plans = planRemesh(model, settings);
+  ASSERT_EQ(plans.size(), 1u);
+  EXPECT_EQ(plans[0].targetSize, 0.5);
+  settings.parts = {30};
+  EXPECT_THROW(planRemesh(model, settings), SettingError);
+  settings.parts = {};
+  settings.targetSize = -1;
+  EXPECT_THROW(planRemesh(model, settings), SettingError);
+  settings.targetSize = 0;
+  settings.volume.bandWidthVoxels = 0;
+  EXPECT_THROW(planRemesh(model, settings), SettingError);
+  EXPECT_EQ(choosePart(model, 20, "deck", "part="), 20);
+  EXPECT_THROW(choosePart(model, 0, "deck", "part="), SettingError);
+  EXPECT_THROW(choosePart(model, 30, "deck", "part="), std::runtime_error);
+}
+
+TEST(Pipeline, PartVolumeUsesThePlannedSize) {
+  const FeModel model =
+      readDeck(std::filesystem::path(VOXREMESH_SOURCE_DIR) / "tools" / "samples" / "hat_rail.k");
+  RemeshSettings settings;
+  settings.targetSize = 8;
+  const std::vector<PartPlan> plans = planRemesh(model, settings);
+  ASSERT_FALSE(plans.empty());
+  const Volume volume = partVolume(model, plans[0], settings);
+  EXPECT_DOUBLE_EQ(volume.info().voxelSize, 8.0);
+  EXPECT_FALSE(volume.featureLines().empty());
+}
+
+TEST(Progress, DrawsOnlyWhenEnabled) {
+  EXPECT_EQ(progressText("extract", "part 4075", 0.42), "[ 42%] extract: part 4075");
+  EXPECT_EQ(progressText("read", "", 7.0), "[100%] read");
+  EXPECT_EQ(progressText("read", "", std::nan("")), "[  0%] read");
+  std::FILE* file = std::tmpfile();
+  ASSERT_NE(file, nullptr);
+  EXPECT_FALSE(ProgressLine::isTerminal(file));
+  {
+    ProgressLine quiet(file, false);
+    quiet.update("stage", "x", 0.5);
+  }
+  EXPECT_EQ(std::ftell(file), 0L);
+  {
+    ProgressLine line(file, true, 3600.0);
+    line.update("stage", "a", 0.1);
+    line.update("stage", "b", 0.2);  // within the interval: not drawn
+    line.update("stage", "c", 1.0);  // 100 % always drawn
+  }
+  std::rewind(file);
+  char buffer[256] = {};
+  const std::size_t read = std::fread(buffer, 1, sizeof buffer - 1, file);
+  std::fclose(file);
+  const std::string text(buffer, read);
+  EXPECT_EQ(text, "\r[ 10%] stage: a\x1b[K\r[100%] stage: c\x1b[K\r\x1b[K");
+}
+
+TEST(Pipeline, RemeshDeckDoesNotDependOnTheThreadCount) {
+  const FeModel sample = readDeck(test::samplePart());
+  // Two copies of the sample as two parts, so that the parts run in parallel.
+  FeModel deck = sample;
+  for (const Node& node : sample.nodes)
+    deck.nodes.push_back(Node{node.id + 100000, {node.xyz[0], node.xyz[1] + 300, node.xyz[2]}});
+  for (Shell shell : sample.shells) {
+    shell.id += 100000;
+    shell.part = 200;
+    for (int c = 0; c < shell.nodeCount; ++c) shell.nodes[static_cast<std::size_t>(c)] += 100000;
+    deck.shells.push_back(shell);
+  }
+  deck.partOrAdd(200, "copy");
+  RemeshSettings settings;
+  settings.targetSize = 8;
+  std::vector<std::string> written;
+  const auto dir = test::scratchDir("remesh_threads");
+  for (const int threads : {1, 2}) {
+    FeModel copy = deck;
+    settings.threads = threads;
+    std::vector<std::string> stages;
+    const RemeshReport report = remeshDeck(
+        copy, settings, [&](const std::string& stage, Id, double) { stages.push_back(stage); });
+    ASSERT_EQ(report.parts.size(), 2u);
+    EXPECT_EQ(stages.back(), "assemble");
+    EXPECT_GT(report.parts[1].quads, 0u);
+    const auto path = dir / ("out" + std::to_string(threads) + ".k");
+    writeDeck(copy, path);
+    written.push_back(test::readText(path));
+  }
+  EXPECT_EQ(written[0], written[1]);
+  // A failing part names itself; the deck is left as it was.
+  FeModel copy = deck;
+  settings.parts = {200};
+  settings.volume.memoryLimitBytes = 1000;
+  EXPECT_THROW(
+      {
+        try {
+          remeshDeck(copy, settings);
+        } catch (const SettingError& error) {
+          EXPECT_NE(std::string(error.what()).find("part 200: "), std::string::npos);
+          throw;
+        }
+      },
+      SettingError);
+  EXPECT_EQ(copy.shells.size(), deck.shells.size());
+}

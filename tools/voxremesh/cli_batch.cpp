@@ -1,0 +1,109 @@
+// voxremesh batch: the jobs of a JSON job file in parallel, with a summary (batch.h).
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cli_common.h"
+#include "voxremesh/batch.h"
+#include "voxremesh/progress.h"
+
+namespace voxremesh::cli {
+
+namespace {
+
+const char* const kUsage =
+    "voxremesh batch JOBS.json [--threads N] [--resume] [--shard I/N] [--summary PREFIX] "
+    "[--quiet]";
+
+const char* const kHelp =
+    "Runs the jobs of a JSON job file in parallel within the thread budget. A job that fails\n"
+    "(unreadable input, invalid setting, ...) is reported and the others still run; the exit\n"
+    "status is 1 when any job failed. Writes PREFIX.csv and PREFIX.json with one row per job:\n"
+    "status, message, time, element counts (quality and distance once those stages exist).\n"
+    "\n"
+    "job file:\n"
+    "  {\"threads\": 2, \"defaults\": {\"size\": 4},\n"
+    "   \"jobs\": [{\"task\": \"voxelize\", \"input\": \"bracket.k\", \"output\": "
+    "\"b_{size}.vdb\",\n"
+    "             \"variants\": [{\"size\": 2}, {\"size\": 4}]},\n"
+    "            {\"task\": \"convert\", \"inputs\": \"decks/*.k\", \"output\": "
+    "\"out/{stem}.bdf\"},\n"
+    "            {\"task\": \"chain\", \"input\": \"a.k\", \"output\": \"a.vdb\",\n"
+    "             \"chain\": [\"-read\", \"{input}\", \"-voxelize\", \"-write\", \"{output}\"]}]}\n"
+    "  tasks: voxelize (one part into a .vdb), convert (deck to deck), chain (actions, see\n"
+    "  voxremesh -help); settings: size voxel part band feature_angle invalid_angle format;\n"
+    "  output placeholders: {stem} {name} {index} {SETTING}; paths relative to the job file.\n"
+    "\n"
+    "options:\n"
+    "  --threads N       thread budget for all jobs (default: the file's \"threads\", else all\n"
+    "                    cores)\n"
+    "  --resume          skip jobs whose output exists (outputs are written atomically, so an\n"
+    "                    existing one is complete)\n"
+    "  --shard I/N       run only the jobs whose number is I modulo N (0 <= I < N), e.g.\n"
+    "                    --shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT with 0-based tasks\n"
+    "  --summary PREFIX  where the summary goes (default: JOBS without .json plus \".summary\",\n"
+    "                    and \".shardIofN\" when sharded)\n"
+    "  --quiet           no progress line (it is shown only on a terminal anyway)\n";
+
+}  // namespace
+
+int runBatchCommand(const std::vector<std::string>& args) {
+  if (wantsHelp(args)) {
+    std::printf("usage: %s\n\n%s", kUsage, kHelp);
+    return 0;
+  }
+  const ParsedArgs parsed = parseArgs(args,
+                                      {{"--threads", true},
+                                       {"--resume", false},
+                                       {"--shard", true},
+                                       {"--summary", true},
+                                       {"--quiet", false}},
+                                      1, 1, kUsage);
+  BatchOptions options;
+  options.resume = parsed.has("--resume");
+  if (const auto shard = parsed.value("--shard")) parseShard(*shard, options);
+  std::optional<int> threads;
+  if (const auto text = parsed.value("--threads")) {
+    const long long value = parseInteger("--threads", *text);
+    if (value < 0 || value > 4096) throw SettingError("--threads must be within 0..4096");
+    threads = static_cast<int>(value);
+  }
+  const std::filesystem::path jobFile = parsed.positional[0];
+  const BatchFile file = readBatchFile(jobFile);
+  options.threads = threads ? *threads : file.threads;
+  std::filesystem::path prefix = jobFile;
+  if (prefix.extension() == ".json") prefix.replace_extension();
+  std::string prefixText = prefix.string() + ".summary";
+  if (options.shardCount > 1)
+    prefixText = prefix.string() + ".shard" + std::to_string(options.shardIndex) + "of" +
+                 std::to_string(options.shardCount) + ".summary";
+  if (const auto given = parsed.value("--summary")) prefixText = *given;
+
+  ProgressLine progress(stderr, ProgressLine::isTerminal(stderr) && !parsed.has("--quiet"));
+  options.onJobDone = [&](const BatchResult& result, std::size_t done, std::size_t total) {
+    progress.clear();
+    if (result.status == "failed") {
+      std::fprintf(stderr, "FAILED %s: %s\n", result.name.c_str(), result.message.c_str());
+    } else {
+      std::printf("%-7s %s (%.2f s)\n", result.status.c_str(), result.name.c_str(), result.seconds);
+      std::fflush(stdout);
+    }
+    progress.update("batch", std::to_string(done) + "/" + std::to_string(total) + " jobs",
+                    static_cast<double>(done) / static_cast<double>(total));
+  };
+  const std::vector<BatchResult> results = runBatch(file.jobs, options);
+  progress.clear();
+  writeBatchSummaries(file.jobs, results, prefixText);
+  std::size_t ok = 0, failed = 0, skipped = 0;
+  for (const BatchResult& result : results) {
+    ok += result.status == "ok" ? 1 : 0;
+    failed += result.status == "failed" ? 1 : 0;
+    skipped += result.status == "skipped" ? 1 : 0;
+  }
+  printOutput(std::to_string(ok) + " ok, " + std::to_string(failed) + " failed, " +
+              std::to_string(skipped) + " skipped; summary in " + prefixText + ".csv and .json\n");
+  return failed > 0 ? 1 : 0;
+}
+
+}  // namespace voxremesh::cli
