@@ -27,6 +27,8 @@ constexpr Command kCommands[] = {
      voxremesh::cli::runInspect},
     {"slice", "render one axis-aligned slice of a .vdb volume as a PNG image",
      voxremesh::cli::runSlice},
+    {"quality", "FE quality criteria of a deck's shells: table, JSON, .vtu",
+     voxremesh::cli::runQuality},
 };
 
 const char* const kUsage = "voxremesh COMMAND [options]  (see voxremesh --help)";
