@@ -1,0 +1,141 @@
+// cleanUpMesh: zero-area faces and doublets (Free interior points in exactly two faces).
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "optimize/mesh_topology.h"
+#include "voxremesh/optimize.h"
+
+namespace voxremesh {
+
+namespace {
+
+/// Drops repeated consecutive corners of every face (a-a-b-c is the triangle a-b-c); faces left
+/// with fewer than three distinct corners, or repeating a diagonal, are erased. Returns how many
+/// faces changed or went.
+std::size_t dropRepeatedCorners(QuadMesh& mesh) {
+  std::vector<std::uint8_t> deleted(mesh.faces.size(), 0);
+  std::size_t changed = 0;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    auto& face = mesh.faces[f];
+    const int n = cornerCount(face);
+    std::array<CornerIndex, 4> kept{kNoCorner, kNoCorner, kNoCorner, kNoCorner};
+    int m = 0;
+    for (int k = 0; k < n; ++k) {
+      const CornerIndex c = face[static_cast<std::size_t>(k)];
+      if (m > 0 && kept[static_cast<std::size_t>(m - 1)] == c) continue;
+      kept[static_cast<std::size_t>(m++)] = c;
+    }
+    if (m > 1 && kept[static_cast<std::size_t>(m - 1)] == kept[0])
+      kept[static_cast<std::size_t>(--m)] = kNoCorner;
+    if (m == n) continue;
+    ++changed;
+    if (m < 3 || (m == 4 && (kept[0] == kept[2] || kept[1] == kept[3])))
+      deleted[f] = 1;
+    else
+      face = kept;
+  }
+  opt::eraseFaces(mesh, deleted);
+  return changed;
+}
+
+/// One round of shortest-edge collapses of zero-area faces; returns the number done.
+std::size_t collapseZeroAreaFaces(QuadMesh& mesh, double zeroArea) {
+  const opt::Topology topology = opt::buildTopology(mesh);
+  std::vector<std::uint8_t> locked(mesh.points.size(), 0), deleted(mesh.faces.size(), 0);
+  std::size_t done = 0;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (deleted[f] || opt::faceArea(mesh, mesh.faces[f]) > zeroArea) continue;
+    const auto face = mesh.faces[f];
+    const int n = cornerCount(face);
+    int shortest = 0;
+    double length = geom::distance(mesh.points[face[0]], mesh.points[face[1]]);
+    for (int k = 1; k < n; ++k) {
+      const double l = geom::distance(mesh.points[face[static_cast<std::size_t>(k)]],
+                                      mesh.points[face[static_cast<std::size_t>((k + 1) % n)]]);
+      if (l < length) length = l, shortest = k;
+    }
+    const CornerIndex u = face[static_cast<std::size_t>(shortest)];
+    const CornerIndex v = face[static_cast<std::size_t>((shortest + 1) % n)];
+    if (opt::neighbourhoodLocked(mesh, topology, u, locked) ||
+        opt::neighbourhoodLocked(mesh, topology, v, locked) ||
+        !opt::mergeKeepsManifold(mesh, topology, u, v))
+      continue;
+    const std::optional<opt::Merge> merge = opt::mergeUnderConstraints(mesh, u, v);
+    if (!merge) continue;
+    opt::lockNeighbourhood(mesh, topology, u, locked);
+    opt::lockNeighbourhood(mesh, topology, v, locked);
+    opt::applyMerge(mesh, topology, *merge, deleted);
+    ++done;
+  }
+  opt::eraseFaces(mesh, deleted);
+  return done;
+}
+
+/// The corners of `face` starting after v, up to the one before v.
+std::vector<CornerIndex> pathAround(const std::array<CornerIndex, 4>& face, CornerIndex v) {
+  const int n = cornerCount(face);
+  int at = 0;
+  while (face[static_cast<std::size_t>(at)] != v) ++at;
+  std::vector<CornerIndex> path;
+  for (int k = 1; k < n; ++k) path.push_back(face[static_cast<std::size_t>((at + k) % n)]);
+  return path;
+}
+
+/// One round of doublet removal; returns the number of points removed.
+std::size_t removeDoublets(QuadMesh& mesh) {
+  const opt::Topology topology = opt::buildTopology(mesh);
+  std::vector<std::uint8_t> locked(mesh.points.size(), 0), deleted(mesh.faces.size(), 0);
+  std::size_t done = 0;
+  for (CornerIndex v = 0; v < mesh.points.size(); ++v) {
+    if (topology.faceCount(v) != 2 || topology.boundary[v] ||
+        opt::roleOf(mesh, v) != PointRole::Free ||
+        opt::neighbourhoodLocked(mesh, topology, v, locked))
+      continue;
+    const std::uint32_t f1 = topology.facesBegin(v)[0], f2 = topology.facesBegin(v)[1];
+    const std::vector<CornerIndex> a = pathAround(mesh.faces[f1], v);
+    const std::vector<CornerIndex> b = pathAround(mesh.faces[f2], v);
+    if (a.front() != b.back() || a.back() != b.front()) continue;  // not consistently oriented
+    std::vector<CornerIndex> polygon(a.begin(), a.end());
+    polygon.insert(polygon.end(), b.begin() + 1, b.end() - 1);
+    bool repeats = false;
+    for (std::size_t i = 0; i < polygon.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j) repeats = repeats || polygon[i] == polygon[j];
+    if (repeats) continue;
+    opt::lockNeighbourhood(mesh, topology, v, locked);
+    deleted[f2] = 1;
+    if (polygon.size() < 3) {
+      deleted[f1] = 1;
+    } else {
+      std::array<CornerIndex, 4> merged{kNoCorner, kNoCorner, kNoCorner, kNoCorner};
+      for (std::size_t k = 0; k < polygon.size(); ++k) merged[k] = polygon[k];
+      mesh.faces[f1] = merged;
+    }
+    ++done;
+  }
+  opt::eraseFaces(mesh, deleted);
+  return done;
+}
+
+}  // namespace
+
+CleanupResult cleanUpMesh(QuadMesh& mesh, double zeroArea) {
+  if (!std::isfinite(zeroArea) || zeroArea < 0.0)
+    throw std::invalid_argument("cleanUpMesh: zero-area threshold " + std::to_string(zeroArea) +
+                                " is not finite and >= 0");
+  CleanupResult result;
+  result.zeroAreaFaces += dropRepeatedCorners(mesh);
+  opt::checkMesh(mesh);
+  for (;;) {
+    const std::size_t zero = collapseZeroAreaFaces(mesh, zeroArea);
+    result.zeroAreaFaces += zero;
+    const std::size_t doublets = removeDoublets(mesh);
+    result.valence2Points += doublets;
+    if (zero == 0 && doublets == 0) break;
+  }
+  opt::removeUnusedPoints(mesh);
+  return result;
+}
+
+}  // namespace voxremesh

@@ -1,0 +1,107 @@
+// relaxMesh: tangential smoothing projected on the original surface, curve points on their
+// curves, corners fixed.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "optimize/mesh_topology.h"
+#include "voxremesh/optimize.h"
+
+namespace voxremesh {
+
+using namespace geom;  // NOLINT: the vector operators
+
+namespace {
+
+/// The neighbours of curve point v along its curve: along boundary edges for a Boundary point,
+/// else along edges to points of the same curve or to Corners.
+std::vector<CornerIndex> curveNeighbours(const QuadMesh& mesh, const opt::Topology& t,
+                                         CornerIndex v) {
+  std::vector<CornerIndex> result;
+  const PointConstraint& c = mesh.constraints[v];
+  for (const std::uint32_t* w = t.nbrsBegin(v); w != t.nbrsEnd(v); ++w) {
+    if (c.role == PointRole::Boundary) {
+      if (t.edgeFaces(v, *w) == 1) result.push_back(*w);
+      continue;
+    }
+    const PointConstraint& o = mesh.constraints[*w];
+    if (o.role == PointRole::Corner || (o.role != PointRole::Free && o.curve == c.curve))
+      result.push_back(*w);
+  }
+  return result;
+}
+
+/// The smoothing target of a Free point: the area-weighted mean of its faces' centroids, with the
+/// part of the move along the point's normal (the sum of its faces' normals) removed.
+Vec3 freeTarget(const QuadMesh& mesh, const opt::Topology& t, CornerIndex v) {
+  Vec3 sum{0.0, 0.0, 0.0}, normal{0.0, 0.0, 0.0};
+  double weight = 0.0;
+  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f) {
+    const auto& face = mesh.faces[*f];
+    const int n = cornerCount(face);
+    Vec3 centroid{0.0, 0.0, 0.0};
+    for (int k = 0; k < n; ++k)
+      centroid = centroid + mesh.points[face[static_cast<std::size_t>(k)]];
+    centroid = centroid * (1.0 / n);
+    const double area = opt::faceArea(mesh, face);
+    sum = sum + centroid * area;
+    weight += area;
+    const auto& p = mesh.points;
+    normal = normal + (n == 3 ? cross(p[face[1]] - p[face[0]], p[face[2]] - p[face[0]])
+                              : cross(p[face[2]] - p[face[0]], p[face[3]] - p[face[1]]));
+  }
+  if (!(weight > 0.0)) return mesh.points[v];
+  const Vec3 move = sum * (1.0 / weight) - mesh.points[v];
+  const Vec3 unit = normalized(normal);
+  return mesh.points[v] + move - unit * dot(move, unit);
+}
+
+}  // namespace
+
+void relaxMesh(QuadMesh& mesh, const ReferenceSurface& original, int iterations, double damping) {
+  if (original.empty()) throw std::invalid_argument("relaxMesh: the original surface is empty");
+  if (iterations < 0) throw std::invalid_argument("relaxMesh: negative iteration count");
+  if (!(damping > 0.0 && damping <= 1.0))
+    throw std::invalid_argument("relaxMesh: damping " + std::to_string(damping) +
+                                " is not in (0, 1]");
+  opt::checkMesh(mesh);
+  const opt::Topology topology = opt::buildTopology(mesh);
+  const std::size_t count = mesh.points.size();
+  std::vector<std::vector<CornerIndex>> along(count);
+  if (!mesh.constraints.empty())
+    for (CornerIndex v = 0; v < count; ++v) {
+      const PointRole role = mesh.constraints[v].role;
+      if (role != PointRole::Free && role != PointRole::Corner)
+        along[v] = curveNeighbours(mesh, topology, v);
+    }
+  std::vector<Vec3> next(count);
+  for (int iteration = 0; iteration < iterations; ++iteration) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 64),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                          const auto v = static_cast<CornerIndex>(i);
+                          const Vec3& p = mesh.points[v];
+                          const PointRole role = opt::roleOf(mesh, v);
+                          if (topology.faceCount(v) == 0 || role == PointRole::Corner) {
+                            next[v] = p;
+                          } else if (role == PointRole::Free) {
+                            const Vec3 target = freeTarget(mesh, topology, v);
+                            next[v] = original.closestPoint(p + (target - p) * damping).point;
+                          } else if (along[v].size() == 2) {
+                            const Vec3 target =
+                                (mesh.points[along[v][0]] + mesh.points[along[v][1]]) * 0.5;
+                            next[v] = opt::constrainedPosition(mesh, v, p + (target - p) * damping);
+                          } else {
+                            next[v] = opt::constrainedPosition(mesh, v, p);
+                          }
+                        }
+                      });
+    mesh.points.swap(next);
+  }
+}
+
+}  // namespace voxremesh

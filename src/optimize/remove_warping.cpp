@@ -1,0 +1,105 @@
+// removeWarping: project the corners of warped quads on their mean planes (paper Sect. 5.1).
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "optimize/mesh_topology.h"
+#include "voxremesh/optimize.h"
+
+namespace voxremesh {
+
+using namespace geom;  // NOLINT: the vector operators
+
+namespace {
+
+/// The warping angle of a quad and the plane its corners are projected on.
+struct QuadPlane {
+  double warpingDeg = 0.0;
+  Vec3 centroid{};
+  Vec3 normal{};  ///< unit sum of the four diagonal-split triangle normals
+};
+
+QuadPlane quadPlane(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face) {
+  std::array<Vec3, 4> p;
+  for (std::size_t k = 0; k < 4; ++k) p[k] = mesh.points[face[k]];
+  QuadPlane plane;
+  const Vec3 n012 = cross(p[1] - p[0], p[2] - p[0]), n023 = cross(p[2] - p[0], p[3] - p[0]);
+  const Vec3 n123 = cross(p[2] - p[1], p[3] - p[1]), n130 = cross(p[3] - p[1], p[0] - p[1]);
+  const auto angle = [](const Vec3& a, const Vec3& b) {
+    return norm(a) == 0.0 || norm(b) == 0.0 ? 0.0 : angleDeg(a, b);
+  };
+  plane.warpingDeg = std::max(angle(n012, n023), angle(n123, n130));
+  plane.centroid = (p[0] + p[1] + p[2] + p[3]) * 0.25;
+  plane.normal = normalized(n012 + n023 + n123 + n130);
+  return plane;
+}
+
+}  // namespace
+
+WarpingResult removeWarping(QuadMesh& mesh, double maxWarpingDeg, int maxIterations) {
+  if (!std::isfinite(maxWarpingDeg) || maxWarpingDeg < 0.0)
+    throw std::invalid_argument("removeWarping: threshold " + std::to_string(maxWarpingDeg) +
+                                " is not a finite angle >= 0");
+  if (maxIterations < 0) throw std::invalid_argument("removeWarping: negative iteration count");
+  opt::checkMesh(mesh);
+  const opt::Topology topology = opt::buildTopology(mesh);
+  const std::size_t faceCount = mesh.faces.size();
+  std::vector<QuadPlane> planes(faceCount);
+  std::vector<std::uint8_t> warped(faceCount, 0);
+  auto measure = [&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faceCount),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t f = r.begin(); f < r.end(); ++f) {
+                          warped[f] = 0;
+                          if (cornerCount(mesh.faces[f]) != 4) continue;
+                          planes[f] = quadPlane(mesh, mesh.faces[f]);
+                          warped[f] = planes[f].warpingDeg > maxWarpingDeg ? 1 : 0;
+                        }
+                      });
+    std::size_t count = 0;
+    for (const std::uint8_t w : warped) count += w;
+    return count;
+  };
+
+  WarpingResult result;
+  result.warpedBefore = result.warpedAfter = measure();
+  std::size_t best = result.warpedAfter;
+  int stalled = 0;
+  std::vector<Vec3> next(mesh.points.size());
+  while (result.warpedAfter > 0 && result.iterations < maxIterations && stalled < 10) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.points.size()),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t v = r.begin(); v < r.end(); ++v) {
+                          const auto vi = static_cast<CornerIndex>(v);
+                          Vec3 sum{0.0, 0.0, 0.0};
+                          int proposals = 0;
+                          for (const std::uint32_t* f = topology.facesBegin(vi);
+                               f != topology.facesEnd(vi); ++f) {
+                            if (!warped[*f]) continue;
+                            const QuadPlane& plane = planes[*f];
+                            const Vec3& p = mesh.points[v];
+                            sum = sum + (p - plane.normal * dot(p - plane.centroid, plane.normal));
+                            ++proposals;
+                          }
+                          next[v] = proposals ? opt::constrainedPosition(mesh, vi,
+                                                                         sum * (1.0 / proposals))
+                                              : mesh.points[v];
+                        }
+                      });
+    mesh.points.swap(next);
+    ++result.iterations;
+    result.warpedAfter = measure();
+    if (result.warpedAfter < best) {
+      best = result.warpedAfter;
+      stalled = 0;
+    } else {
+      ++stalled;
+    }
+  }
+  return result;
+}
+
+}  // namespace voxremesh
