@@ -6,11 +6,13 @@
 // the mean of its edge crossing points. (A component with two loops, an MC33 tunnel, gets one
 // vertex per loop: a single vertex would make the mesh non-manifold there; the face decisions,
 // and so the absence of cracks, are unchanged, and the interior ambiguity is resolved without
-// the tunnel.) For every grid edge whose two voxels differ in sign and whose four surrounding
-// cells all have vertices, one quad joins the vertices of the four cells that hold that edge's
-// crossing, counter-clockwise seen from the positive side. Cells crossed by a boundary loop of the
-// volume (closed cube) get no vertex either, so that the mesh stops short of every boundary,
-// holes of one element included.
+// the tunnel. Likewise, where two neighbouring cells each have one loop through both arcs of
+// their shared face, both loops are cut at that face into two vertices each, which resolves that
+// face the other way in both cells; otherwise four quads would share one edge.) For every grid edge
+// whose two voxels differ in sign and whose four surrounding cells all have vertices, one quad
+// joins the vertices of the four cells that hold that edge's crossing, counter-clockwise seen from
+// the positive side. Cells crossed by a boundary loop of the volume (closed cube) get no vertex
+// either, so that the mesh stops short of every boundary, holes of one element included.
 //
 // The work runs over the active leaves of the sdf with TBB (tree::LeafManager; counts, prefix
 // sums, fill), like OpenVDB's VolumeToMesh; the output does not depend on the thread count.
@@ -34,13 +36,16 @@ struct ExtractSettings {
 
 /// What the extraction did, for reports and tests.
 struct ExtractStats {
-  std::uint64_t surfaceCells = 0;   ///< valid cells with at least one component
-  std::uint64_t tunnelCells = 0;    ///< cells with an MC33 tunnel (split into one vertex per loop)
-  std::uint64_t skippedCells = 0;   ///< sign-changing cells left out (invalid, inactive, boundary)
-  std::uint64_t dualVertices = 0;   ///< vertices of the dual mesh
-  std::uint64_t dualQuads = 0;      ///< quads of the dual mesh
-  std::uint64_t stripQuads = 0;     ///< quads of the rebuilt boundary strip
-  std::uint64_t stripTriangles = 0; ///< triangles of the rebuilt boundary strip
+  std::uint64_t surfaceCells = 0;  ///< valid cells with at least one component
+  std::uint64_t tunnelCells = 0;   ///< cells with an MC33 tunnel (split into one vertex per loop)
+  std::uint64_t skippedCells = 0;  ///< sign-changing cells left out (invalid, inactive, boundary)
+  /// Cells whose loop was cut in two at an ambiguous face because the cell across it also has
+  /// one loop through both arcs of that face (two cells each; see the top of the file).
+  std::uint64_t cutCells = 0;
+  std::uint64_t dualVertices = 0;     ///< vertices of the dual mesh
+  std::uint64_t dualQuads = 0;        ///< quads of the dual mesh
+  std::uint64_t stripQuads = 0;       ///< quads of the rebuilt boundary strip
+  std::uint64_t stripTriangles = 0;   ///< triangles of the rebuilt boundary strip
   std::uint64_t snappedVertices = 0;  ///< vertices moved onto feature lines or points
 };
 

@@ -72,4 +72,8 @@ inline int cornerCount(const std::array<CornerIndex, 4>& face) {
 /// model does not define.
 QuadMesh quadMeshFromModel(const FeModel& model, Id part = 0);
 
+/// A model holding the mesh as one part: nodes 1..n in point order, shells 1..m in face order,
+/// part `part` (defined, unnamed). Preconditions: every face names existing points.
+FeModel modelFromQuadMesh(const QuadMesh& mesh, Id part = 1);
+
 }  // namespace voxremesh

@@ -34,4 +34,23 @@ QuadMesh quadMeshFromModel(const FeModel& model, Id part) {
   return mesh;
 }
 
+FeModel modelFromQuadMesh(const QuadMesh& mesh, Id part) {
+  FeModel model;
+  model.nodes.reserve(mesh.points.size());
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    model.nodes.push_back({static_cast<Id>(i + 1), mesh.points[i]});
+  model.shells.reserve(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    Shell shell;
+    shell.id = static_cast<Id>(f + 1);
+    shell.part = part;
+    shell.nodeCount = static_cast<std::uint8_t>(cornerCount(mesh.faces[f]));
+    for (int c = 0; c < shell.nodeCount; ++c)
+      shell.nodes[std::size_t(c)] = static_cast<Id>(mesh.faces[f][std::size_t(c)]) + 1;
+    model.shells.push_back(shell);
+  }
+  model.partOrAdd(part);
+  return model;
+}
+
 }  // namespace voxremesh

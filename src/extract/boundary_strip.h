@@ -1,0 +1,40 @@
+// The boundary strip of the extraction stage (paper Fig. 7): the dual mesh stops short of the
+// original boundary loops; this closes the gap with a strip of quads (triangles only where a
+// corner of the loop needs an extra node) whose outer nodes lie on the original loops.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "voxremesh/quad_mesh.h"
+
+namespace voxremesh::extract {
+
+/// Counts of rebuildBoundaryStrip.
+struct StripStats {
+  std::uint64_t quads = 0;
+  std::uint64_t triangles = 0;
+  std::uint64_t removedFaces = 0;  ///< faces of stray dual pieces removed (see below)
+};
+
+/// Rebuilds the boundary of `mesh` up to the original boundary loops.
+/// Every boundary loop of the dual mesh is matched to the original loop most of its vertices are
+/// closest to; each original loop takes the matched dual loop with the most vertices. Dual
+/// pieces (connected components) with a boundary none of whose loops was taken are stray
+/// (surface left inside a small hole) and removed. Between a taken dual loop D and its loop O the
+/// strip gets one node on O per vertex of D, at the arc length of the vertex's closest point on O
+/// (made monotone: vertices outside the longest increasing run of arc lengths are spaced by D's
+/// own arc length), the corners of O replacing the nearest such node where the order allows, else
+/// added with a triangle; then one quad per vertex step of D. New nodes on O get role Boundary
+/// (curve: the loop's index in mesh.curves) or Corner.
+/// @param mesh        the dual mesh: edge-manifold, faces oriented (boundary loops run with the
+///                    mesh on their left, as the original loops do)
+/// @param loopCurves  the indices into mesh.curves of the original boundary loops (closed)
+/// @param corners     feature points; those equal to a vertex of a loop are its corners
+/// Throws std::runtime_error naming the loop (index and a point of it) when an original loop has
+/// no dual loop to join, or a dual piece keeps a boundary loop that no original loop takes.
+StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& loopCurves,
+                                const std::vector<std::array<double, 3>>& corners);
+
+}  // namespace voxremesh::extract

@@ -1,0 +1,95 @@
+// extractQuadMesh: the dual mesh, feature snapping, the boundary strip (see extract.h).
+#include "voxremesh/extract.h"
+
+#include <stdexcept>
+
+#include "extract/boundary_strip.h"
+#include "extract/dual_mesh.h"
+#include "extract/feature_snap.h"
+#include "volume/volume_build.h"
+#include "volume/volume_grids.h"
+
+namespace voxremesh {
+
+namespace {
+
+/// Drops points no face uses, keeping the order of the others.
+void removeUnusedPoints(QuadMesh& mesh) {
+  std::vector<CornerIndex> newIndex(mesh.points.size(), kNoCorner);
+  for (const auto& face : mesh.faces)
+    for (int c = 0; c < cornerCount(face); ++c) newIndex[face[std::size_t(c)]] = 0;
+  CornerIndex next = 0;
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    if (newIndex[i] == kNoCorner) continue;
+    newIndex[i] = next;
+    mesh.points[next] = mesh.points[i];
+    if (!mesh.constraints.empty()) mesh.constraints[next] = mesh.constraints[i];
+    ++next;
+  }
+  mesh.points.resize(next);
+  if (!mesh.constraints.empty()) mesh.constraints.resize(next);
+  for (auto& face : mesh.faces)
+    for (int c = 0; c < cornerCount(face); ++c)
+      face[std::size_t(c)] = newIndex[face[std::size_t(c)]];
+}
+
+MeshCurve toMeshCurve(const VolumeCurve& curve, PointRole role) {
+  return {curve.points, curve.closed, role};
+}
+
+}  // namespace
+
+QuadMesh extractQuadMesh(const Volume& volume, const ExtractSettings& settings,
+                         ExtractStats* stats) {
+  if (volume.empty()) throw std::invalid_argument("extractQuadMesh: the volume is empty");
+  const Volume::Impl& grids = volume.impl();
+
+  QuadMesh mesh;
+  mesh.part = volume.info().part;
+  std::vector<std::uint32_t> loopCurves, lineCurves;
+  for (const VolumeCurve& loop : volume.boundaryLoops()) {
+    loopCurves.push_back(static_cast<std::uint32_t>(mesh.curves.size()));
+    mesh.curves.push_back(toMeshCurve(loop, PointRole::Boundary));
+  }
+  for (const VolumeCurve& line : volume.featureLines()) {
+    lineCurves.push_back(static_cast<std::uint32_t>(mesh.curves.size()));
+    mesh.curves.push_back(toMeshCurve(line, PointRole::Feature));
+  }
+
+  // Cells the boundary loops cross get no vertex when the strip is rebuilt: the dual mesh then
+  // stops short of every loop, however small the hole.
+  const bool rebuild = settings.rebuildBoundary && !loopCurves.empty();
+  const openvdb::MaskGrid::Ptr excludedCells =
+      rebuild ? volume::buildFeatureMask(volume.boundaryLoops(), {}, grids.transform)
+              : openvdb::MaskGrid::create();
+  extract::DualMesh dual =
+      extract::buildDualMesh(*grids.sdf, grids.invalid->tree(), excludedCells->tree());
+  mesh.points = std::move(dual.points);
+  mesh.faces.reserve(dual.quads.size());
+  for (const auto& q : dual.quads) mesh.faces.push_back({q[0], q[1], q[2], q[3]});
+  mesh.constraints.assign(mesh.points.size(), PointConstraint{});
+
+  ExtractStats counts;
+  counts.surfaceCells = dual.surfaceCells;
+  counts.tunnelCells = dual.tunnelCells;
+  counts.skippedCells = dual.skippedCells;
+  counts.cutCells = dual.cutCells;
+  counts.dualVertices = mesh.points.size();
+  counts.dualQuads = mesh.faces.size();
+  if (settings.snapFeatures) {
+    counts.snappedVertices =
+        extract::snapToFeatures(mesh, dual.pointCells, grids.feature->tree(), *grids.transform,
+                                lineCurves, volume.featurePoints());
+  }
+  if (rebuild) {
+    const extract::StripStats strip =
+        extract::rebuildBoundaryStrip(mesh, loopCurves, volume.featurePoints());
+    counts.stripQuads = strip.quads;
+    counts.stripTriangles = strip.triangles;
+  }
+  removeUnusedPoints(mesh);
+  if (stats) *stats = counts;
+  return mesh;
+}
+
+}  // namespace voxremesh
