@@ -305,6 +305,37 @@ TEST(RelaxMesh, EqualisesAJitteredCylinderAndStaysOnIt) {
   EXPECT_THROW(voxremesh::relaxMesh(mesh, fine, 1, 0.0), std::invalid_argument);
 }
 
+TEST(RelaxMesh, UnconstrainedBoundaryPointsSlideAlongTheBoundary) {
+  // Without constraints the boundary points are Free: they may only slide along the boundary,
+  // so the mesh keeps its outline instead of shrinking.
+  const int n = 8;
+  QuadMesh mesh = grid(n);
+  mesh.constraints.clear();
+  mesh.curves.clear();
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> d(-0.3, 0.3);
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      auto& p = mesh.points[j * (n + 1) + i];
+      if (i > 0 && i < n) p[0] += d(random);
+      if (j > 0 && j < n) p[1] += d(random);
+    }
+  const ReferenceSurface plane(grid(n));
+  voxremesh::relaxMesh(mesh, plane, 30, 0.5);
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const auto& p = mesh.points[j * (n + 1) + i];
+      if (i == 0 || i == n) {
+        EXPECT_NEAR(p[0], i, 1e-12);
+      }
+      if (j == 0 || j == n) {
+        EXPECT_NEAR(p[1], j, 1e-12);
+      }
+    }
+  EXPECT_LT(voxremesh::surfaceDistance(mesh, grid(n)).max(), 1e-12);
+  for (const auto& q : voxremesh::elementQualities(mesh)) EXPECT_GT(q.minAngleDeg, 80.0);
+}
+
 /// Defects at once on the jittered cylinder: points pushed out (warped quads), a doublet, a quad
 /// split into two triangles.
 QuadMesh plantedCylinder() {

@@ -56,9 +56,12 @@ std::size_t collapseRhombicQuads(QuadMesh& mesh, const ReferenceSurface* surface
 /// (Jacobi: all targets from the previous positions), a Free point moves `damping` of the way to
 /// the area-weighted mean of its faces' centroids, minus the part along its normal, and is then
 /// projected on `original` (the closest point of the original surface, not of the previous
-/// iterate). A curve point with exactly two neighbours on its curve (along boundary edges for
-/// Boundary points, else along edges to points of the same curve or to Corners) moves towards
-/// their midpoint and then to the closest point of its curve; Corner points stay.
+/// iterate). A Free point on the mesh boundary moves towards the midpoint of its two boundary
+/// neighbours only along the line joining them (the outline does not shrink), and not at all
+/// where the boundary turns by more than 30 degrees there; then it is projected on `original`.
+/// A curve point with exactly two neighbours on its curve (along boundary edges for Boundary
+/// points, else along edges to points of the same curve or to Corners) moves towards their
+/// midpoint and then to the closest point of its curve; Corner points stay.
 /// @param original    the surface to stay on, not empty
 /// @param iterations  >= 0
 /// @param damping     in (0, 1]

@@ -17,19 +17,31 @@ using namespace geom;  // NOLINT: the vector operators
 
 namespace {
 
-/// The neighbours of curve point v along its curve: along boundary edges for a Boundary point,
-/// else along edges to points of the same curve or to Corners.
+/// A Free boundary point where the boundary turns by more than this many degrees stays put (as
+/// SheetSettings::cornerAngleDeg makes such points Corners where the sheets are built).
+constexpr double kBoundaryCornerDeg = 30.0;
+
+/// The neighbours of v along boundary edges.
+std::vector<CornerIndex> boundaryNeighbours(const opt::Topology& t, CornerIndex v) {
+  std::vector<CornerIndex> result;
+  for (const std::uint32_t* w = t.nbrsBegin(v); w != t.nbrsEnd(v); ++w)
+    if (t.edgeFaces(v, *w) == 1) result.push_back(*w);
+  return result;
+}
+
+/// The neighbours of v along its curve: along boundary edges for a Boundary point or a Free point
+/// on the boundary, else along edges to points of the same curve or to Corners.
 std::vector<CornerIndex> curveNeighbours(const QuadMesh& mesh, const opt::Topology& t,
                                          CornerIndex v) {
+  const PointRole role = opt::roleOf(mesh, v);
+  if (role == PointRole::Boundary || (role == PointRole::Free && t.boundary[v]))
+    return boundaryNeighbours(t, v);
   std::vector<CornerIndex> result;
-  const PointConstraint& c = mesh.constraints[v];
+  if (role == PointRole::Free || role == PointRole::Corner) return result;
   for (const std::uint32_t* w = t.nbrsBegin(v); w != t.nbrsEnd(v); ++w) {
-    if (c.role == PointRole::Boundary) {
-      if (t.edgeFaces(v, *w) == 1) result.push_back(*w);
-      continue;
-    }
     const PointConstraint& o = mesh.constraints[*w];
-    if (o.role == PointRole::Corner || (o.role != PointRole::Free && o.curve == c.curve))
+    if (o.role == PointRole::Corner ||
+        (o.role != PointRole::Free && o.curve == mesh.constraints[v].curve))
       result.push_back(*w);
   }
   return result;
@@ -60,6 +72,29 @@ Vec3 freeTarget(const QuadMesh& mesh, const opt::Topology& t, CornerIndex v) {
   return mesh.points[v] + move - unit * dot(move, unit);
 }
 
+/// The new position of point v in one relaxation step (see relaxMesh); `along` holds its curve
+/// or boundary neighbours.
+Vec3 relaxed(const QuadMesh& mesh, const opt::Topology& t, const ReferenceSurface& original,
+             const std::vector<CornerIndex>& along, CornerIndex v, double damping) {
+  const Vec3& p = mesh.points[v];
+  const PointRole role = opt::roleOf(mesh, v);
+  if (t.faceCount(v) == 0 || role == PointRole::Corner) return p;
+  if (role == PointRole::Free && !t.boundary[v])
+    return original.closestPoint(p + (freeTarget(mesh, t, v) - p) * damping).point;
+  if (along.size() != 2) return role == PointRole::Free ? p : opt::constrainedPosition(mesh, v, p);
+  const Vec3& a = mesh.points[along[0]];
+  const Vec3& b = mesh.points[along[1]];
+  Vec3 move = (a + b) * 0.5 - p;
+  if (role == PointRole::Free) {
+    // A Free boundary point slides along the boundary only, so that the mesh does not shrink;
+    // where the boundary turns by more than kBoundaryCornerDeg it is a corner and stays.
+    if (angleDeg(p - a, b - p) > kBoundaryCornerDeg) return p;
+    const Vec3 tangent = normalized(b - a);
+    return original.closestPoint(p + tangent * (dot(move, tangent) * damping)).point;
+  }
+  return opt::constrainedPosition(mesh, v, p + move * damping);
+}
+
 }  // namespace
 
 void relaxMesh(QuadMesh& mesh, const ReferenceSurface& original, int iterations, double damping) {
@@ -72,33 +107,14 @@ void relaxMesh(QuadMesh& mesh, const ReferenceSurface& original, int iterations,
   const opt::Topology topology = opt::buildTopology(mesh);
   const std::size_t count = mesh.points.size();
   std::vector<std::vector<CornerIndex>> along(count);
-  if (!mesh.constraints.empty())
-    for (CornerIndex v = 0; v < count; ++v) {
-      const PointRole role = mesh.constraints[v].role;
-      if (role != PointRole::Free && role != PointRole::Corner)
-        along[v] = curveNeighbours(mesh, topology, v);
-    }
+  for (CornerIndex v = 0; v < count; ++v) along[v] = curveNeighbours(mesh, topology, v);
   std::vector<Vec3> next(count);
   for (int iteration = 0; iteration < iterations; ++iteration) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 64),
                       [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                          const auto v = static_cast<CornerIndex>(i);
-                          const Vec3& p = mesh.points[v];
-                          const PointRole role = opt::roleOf(mesh, v);
-                          if (topology.faceCount(v) == 0 || role == PointRole::Corner) {
-                            next[v] = p;
-                          } else if (role == PointRole::Free) {
-                            const Vec3 target = freeTarget(mesh, topology, v);
-                            next[v] = original.closestPoint(p + (target - p) * damping).point;
-                          } else if (along[v].size() == 2) {
-                            const Vec3 target =
-                                (mesh.points[along[v][0]] + mesh.points[along[v][1]]) * 0.5;
-                            next[v] = opt::constrainedPosition(mesh, v, p + (target - p) * damping);
-                          } else {
-                            next[v] = opt::constrainedPosition(mesh, v, p);
-                          }
-                        }
+                        for (std::size_t v = r.begin(); v < r.end(); ++v)
+                          next[v] = relaxed(mesh, topology, original, along[v],
+                                            static_cast<CornerIndex>(v), damping);
                       });
     mesh.points.swap(next);
   }
