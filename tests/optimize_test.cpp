@@ -221,6 +221,41 @@ TEST(CleanUpMesh, CollapsesAColumnOfZeroAreaQuads) {
   expectConstraintsHold(mesh, n);
 }
 
+TEST(CleanUpMesh, CollapsesQuadsFoldedAlongACurve) {
+  // A 4 x 1 strip: bottom points (i, 0) on curve 0, top points (0, 1), (2, 1), (4, 1) on curve 1,
+  // the four corners fixed. Quads (b0, b1, b2, t1) and (b2, b3, b4, t2) have a 180-degree corner
+  // at b1 and b3 on the bottom curve.
+  QuadMesh mesh;
+  for (int i = 0; i <= 4; ++i) mesh.points.push_back({double(i), 0.0, 0.0});
+  for (int i = 0; i <= 4; i += 2) mesh.points.push_back({double(i), 1.0, 0.0});
+  voxremesh::MeshCurve bottom, top;
+  bottom.points = {{0, 0, 0}, {4, 0, 0}};
+  top.points = {{0, 1, 0}, {4, 1, 0}};
+  mesh.curves = {bottom, top};
+  mesh.constraints = {{PointRole::Corner, voxremesh::kNoCurve},
+                      {PointRole::Boundary, 0},
+                      {PointRole::Boundary, 0},
+                      {PointRole::Boundary, 0},
+                      {PointRole::Corner, voxremesh::kNoCurve},
+                      {PointRole::Corner, voxremesh::kNoCurve},
+                      {PointRole::Boundary, 1},
+                      {PointRole::Corner, voxremesh::kNoCurve}};
+  mesh.faces = {{0, 1, 2, 6}, {0, 6, 5, kNoCorner}, {2, 3, 4, 7}, {2, 7, 6, kNoCorner}};
+  const voxremesh::CleanupResult r = voxremesh::cleanUpMesh(mesh, 1e-9);
+  EXPECT_EQ(r.foldedCurveQuads, 2u);
+  EXPECT_EQ(mesh.points.size(), 6u);
+  double area = 0.0;
+  for (const auto& q : voxremesh::elementQualities(mesh)) EXPECT_LT(q.maxAngleDeg, 150.0);
+  for (const auto& f : mesh.faces) {
+    const auto& a = mesh.points[f[0]];
+    const auto& b = mesh.points[f[1]];
+    const auto& c = mesh.points[f[2]];
+    area += 0.5 * std::abs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+  }
+  EXPECT_DOUBLE_EQ(area, 4.0);  // the outline is kept
+  for (const auto& p : mesh.points) EXPECT_TRUE(p[1] == 0.0 || p[1] == 1.0);
+}
+
 TEST(MergeTrianglePairs, JoinsASplitQuadBack) {
   const int n = 3;
   QuadMesh mesh = grid(n);

@@ -11,6 +11,11 @@ namespace voxremesh {
 
 namespace {
 
+using geom::operator-;
+
+/// Interior angle of a quad at a curve point above which the quad is folded along the curve.
+constexpr double kFoldedCurveAngleDeg = 150.0;
+
 /// Drops repeated consecutive corners of every face (a-a-b-c is the triangle a-b-c); faces left
 /// with fewer than three distinct corners, or repeating a diagonal, are erased. Returns how many
 /// faces changed or went.
@@ -118,6 +123,53 @@ std::size_t removeDoublets(QuadMesh& mesh) {
   return done;
 }
 
+/// True when the points are on one curve: a shares b's curve or is a Corner.
+bool onCurveOf(const QuadMesh& mesh, CornerIndex a, CornerIndex b) {
+  const PointRole role = opt::roleOf(mesh, a);
+  return role == PointRole::Corner ||
+         (role != PointRole::Free && mesh.constraints[a].curve == mesh.constraints[b].curve);
+}
+
+/// One round of folded-curve collapses: a quad with three consecutive corners a, b, c on one
+/// curve (b a curve point, a and c on its curve or Corners) and an interior angle above
+/// kFoldedCurveAngleDeg at b lies along the curve like a triangle with b on its side; b merges
+/// into the nearer of a and c. Returns the number done.
+std::size_t collapseFoldedCurveQuads(QuadMesh& mesh) {
+  if (mesh.constraints.empty()) return 0;
+  const opt::Topology topology = opt::buildTopology(mesh);
+  std::vector<std::uint8_t> locked(mesh.points.size(), 0), deleted(mesh.faces.size(), 0);
+  std::size_t done = 0;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto face = mesh.faces[f];
+    if (deleted[f] || cornerCount(face) != 4) continue;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const CornerIndex a = face[(k + 3) % 4], b = face[k], c = face[(k + 1) % 4];
+      const PointRole role = opt::roleOf(mesh, b);
+      if (role == PointRole::Free || role == PointRole::Corner || !onCurveOf(mesh, a, b) ||
+          !onCurveOf(mesh, c, b))
+        continue;
+      const geom::Vec3& pb = mesh.points[b];
+      if (geom::angleDeg(mesh.points[a] - pb, mesh.points[c] - pb) <= kFoldedCurveAngleDeg)
+        continue;
+      const CornerIndex into =
+          geom::distance(mesh.points[a], pb) <= geom::distance(mesh.points[c], pb) ? a : c;
+      if (opt::neighbourhoodLocked(mesh, topology, b, locked) ||
+          opt::neighbourhoodLocked(mesh, topology, into, locked) ||
+          !opt::mergeKeepsManifold(mesh, topology, b, into))
+        continue;
+      const std::optional<opt::Merge> merge = opt::mergeUnderConstraints(mesh, b, into);
+      if (!merge) continue;
+      opt::lockNeighbourhood(mesh, topology, b, locked);
+      opt::lockNeighbourhood(mesh, topology, into, locked);
+      opt::applyMerge(mesh, topology, *merge, deleted);
+      ++done;
+      break;
+    }
+  }
+  opt::eraseFaces(mesh, deleted);
+  return done;
+}
+
 }  // namespace
 
 CleanupResult cleanUpMesh(QuadMesh& mesh, double zeroArea) {
@@ -132,7 +184,9 @@ CleanupResult cleanUpMesh(QuadMesh& mesh, double zeroArea) {
     result.zeroAreaFaces += zero;
     const std::size_t doublets = removeDoublets(mesh);
     result.valence2Points += doublets;
-    if (zero == 0 && doublets == 0) break;
+    const std::size_t folded = collapseFoldedCurveQuads(mesh);
+    result.foldedCurveQuads += folded;
+    if (zero == 0 && doublets == 0 && folded == 0) break;
   }
   opt::removeUnusedPoints(mesh);
   return result;

@@ -49,6 +49,7 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
     const CleanupResult r = cleanUpMesh(mesh, zeroArea);
     s.cleanup.zeroAreaFaces += r.zeroAreaFaces;
     s.cleanup.valence2Points += r.valence2Points;
+    s.cleanup.foldedCurveQuads += r.foldedCurveQuads;
     s.cleanupSeconds += secondsSince(t);
   };
   auto relax = [&] {
