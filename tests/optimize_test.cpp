@@ -318,6 +318,9 @@ TEST(RelaxMesh, EqualisesAJitteredCylinderAndStaysOnIt) {
   for (const auto& q : after) worstAfter = std::min(worstAfter, q.minAngleDeg);
   EXPECT_GT(worstAfter, worstBefore + 10.0);
   EXPECT_GT(worstAfter, 80.0);
+  double worstJacobian = 1.0;
+  for (const auto& q : after) worstJacobian = std::min(worstJacobian, q.jacobianRatio);
+  EXPECT_GT(worstJacobian, 0.9);
   for (std::size_t v = 0; v < mesh.points.size(); ++v) {
     const auto& p = mesh.points[v];
     // Every point on the cylinder (the fine reference's chord error is below 0.01).

@@ -54,7 +54,9 @@ std::size_t collapseRhombicQuads(QuadMesh& mesh, const ReferenceSurface* surface
 
 /// Relaxation: tangential smoothing that equalises element sizes and angles. Per iteration
 /// (Jacobi: all targets from the previous positions), a Free point moves `damping` of the way to
-/// the area-weighted mean of its faces' centroids, minus the part along its normal, and is then
+/// the mean of the area-weighted mean of its faces' centroids (equal sizes) and the mean of the
+/// points that would make each of its quads a parallelogram (equal corner Jacobians), minus the
+/// part of the move along its normal, and is then
 /// projected on `original` (the closest point of the original surface, not of the previous
 /// iterate). A Free point on the mesh boundary moves towards the midpoint of its two boundary
 /// neighbours only along the line joining them (the outline does not shrink), and not at all

@@ -47,14 +47,25 @@ std::vector<CornerIndex> curveNeighbours(const QuadMesh& mesh, const opt::Topolo
   return result;
 }
 
-/// The smoothing target of a Free point: the area-weighted mean of its faces' centroids, with the
-/// part of the move along the point's normal (the sum of its faces' normals) removed.
+/// The smoothing target of a Free point: the mean of (1) the area-weighted mean of its faces'
+/// centroids (equalises sizes) and (2) the mean over its quads (v, a, d, b) of a + b - d, the
+/// position that makes each quad a parallelogram (equalises the corner Jacobians and tapers);
+/// (1) alone without quads. The part of the move along the point's normal (the sum of its faces'
+/// normals) is removed.
 Vec3 freeTarget(const QuadMesh& mesh, const opt::Topology& t, CornerIndex v) {
-  Vec3 sum{0.0, 0.0, 0.0}, normal{0.0, 0.0, 0.0};
+  Vec3 sum{0.0, 0.0, 0.0}, normal{0.0, 0.0, 0.0}, parallelogram{0.0, 0.0, 0.0};
   double weight = 0.0;
+  int quads = 0;
   for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f) {
     const auto& face = mesh.faces[*f];
     const int n = cornerCount(face);
+    if (n == 4) {
+      std::size_t k = 0;
+      while (face[k] != v) ++k;
+      parallelogram = parallelogram + mesh.points[face[(k + 1) % 4]] +
+                      mesh.points[face[(k + 3) % 4]] - mesh.points[face[(k + 2) % 4]];
+      ++quads;
+    }
     Vec3 centroid{0.0, 0.0, 0.0};
     for (int k = 0; k < n; ++k)
       centroid = centroid + mesh.points[face[static_cast<std::size_t>(k)]];
@@ -67,7 +78,9 @@ Vec3 freeTarget(const QuadMesh& mesh, const opt::Topology& t, CornerIndex v) {
                               : cross(p[face[2]] - p[face[0]], p[face[3]] - p[face[1]]));
   }
   if (!(weight > 0.0)) return mesh.points[v];
-  const Vec3 move = sum * (1.0 / weight) - mesh.points[v];
+  Vec3 target = sum * (1.0 / weight);
+  if (quads > 0) target = (target + parallelogram * (1.0 / quads)) * 0.5;
+  const Vec3 move = target - mesh.points[v];
   const Vec3 unit = normalized(normal);
   return mesh.points[v] + move - unit * dot(move, unit);
 }
