@@ -83,6 +83,79 @@ std::vector<std::size_t> longestIncreasingRun(const std::vector<double>& values)
   return run;
 }
 
+/// The closed curve a dual loop is zipped to: one original loop, or several joined by bridges
+/// (keyholes) where the dual mesh could not pass between them.
+struct TargetLoop {
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::uint32_t> segmentCurve;  ///< per segment i -> i+1: the curve, or kNoCurve
+  std::vector<double> cornerParams;         ///< arc lengths of nodes the strip must have
+
+  /// The segment holding arc length s (s in [0, length)).
+  std::size_t segmentAt(const PolylineParam& param, double s) const {
+    std::size_t lo = 0, hi = points.size();
+    while (hi - lo > 1) {
+      const std::size_t mid = (lo + hi) / 2;
+      (param.vertexParam(mid) <= s ? lo : hi) = mid;
+    }
+    return lo;
+  }
+};
+
+/// Joins the loops into one target loop: each further loop is inserted at the closest pair of
+/// points (a bridge there and back), the bridge ends becoming corners. Corners of the loops are
+/// the points equal to one of `corners`.
+TargetLoop joinLoops(const QuadMesh& mesh, const std::vector<std::uint32_t>& curves,
+                     const std::vector<std::array<double, 3>>& corners) {
+  TargetLoop target;
+  std::vector<char> isCorner;
+  auto cornerAt = [&](const std::array<double, 3>& p) {
+    return std::find(corners.begin(), corners.end(), p) != corners.end();
+  };
+  for (std::size_t k = 0; k < curves.size(); ++k) {
+    const std::vector<std::array<double, 3>>& loop = mesh.curves[curves[k]].points;
+    std::vector<std::array<double, 3>> points;
+    std::vector<std::uint32_t> segments;
+    std::vector<char> flags;
+    if (k == 0) {
+      points = loop;
+      segments.assign(loop.size(), curves[k]);
+      for (const auto& p : loop) flags.push_back(cornerAt(p) ? 1 : 0);
+    } else {
+      // The closest pair (i on the target so far, j on this loop).
+      std::size_t bestI = 0, bestJ = 0;
+      double best = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < target.points.size(); ++i)
+        for (std::size_t j = 0; j < loop.size(); ++j) {
+          const double d = (toVec(target.points[i]) - toVec(loop[j])).lengthSqr();
+          if (d < best) best = d, bestI = i, bestJ = j;
+        }
+      for (std::size_t i = 0; i <= bestI; ++i) {
+        points.push_back(target.points[i]);
+        segments.push_back(i == bestI ? kNoCurve : target.segmentCurve[i]);
+        flags.push_back(i == bestI ? 1 : isCorner[i]);
+      }
+      for (std::size_t n = 0; n <= loop.size(); ++n) {
+        const std::size_t j = (bestJ + n) % loop.size();
+        points.push_back(loop[j]);
+        segments.push_back(n == loop.size() ? kNoCurve : curves[k]);
+        flags.push_back(j == bestJ ? 1 : (cornerAt(loop[j]) ? 1 : 0));
+      }
+      for (std::size_t i = bestI; i < target.points.size(); ++i) {
+        points.push_back(target.points[i]);
+        segments.push_back(target.segmentCurve[i]);
+        flags.push_back(i == bestI ? 1 : isCorner[i]);
+      }
+    }
+    target.points = std::move(points);
+    target.segmentCurve = std::move(segments);
+    isCorner = std::move(flags);
+  }
+  const PolylineParam param(target.points, true);
+  for (std::size_t i = 0; i < target.points.size(); ++i)
+    if (isCorner[i]) target.cornerParams.push_back(param.vertexParam(i));
+  return target;
+}
+
 /// A node of the strip's outer side: its arc length on the loop, and the dual vertex it pairs
 /// with (or none for a corner that needs a node of its own).
 struct OuterNode {
@@ -93,8 +166,9 @@ struct OuterNode {
 
 /// Builds the strip between dual loop `dual` (point indices) and original loop `loop`.
 void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
-                const PolylineParam& loop, std::uint32_t curve,
-                const std::vector<double>& cornerParams, StripStats& stats) {
+                const TargetLoop& target, StripStats& stats) {
+  const PolylineParam loop(target.points, true);
+  const std::vector<double>& cornerParams = target.cornerParams;
   const std::size_t m = dualLoop.size();
   const double length = loop.length();
   // Closest-point arc lengths, unwrapped from the dual vertex closest to the loop.
@@ -127,6 +201,14 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
     const double s0 = dualArc[i0], s1 = dualArc[i1];
     for (std::size_t i = i0 + 1; i < i1; ++i)
       u[i] = u0 + (s1 > s0 ? (dualArc[i] - s0) / (s1 - s0) : 0.0) * (u1 - u0);
+  }
+  // No node inside a bridge: such nodes move to the bridge's nearer end.
+  for (std::size_t i = 0; i < m; ++i) {
+    const double v = std::fmod(u[i] + base, length);
+    const std::size_t segment = target.segmentAt(loop, v);
+    if (target.segmentCurve[segment] != kNoCurve) continue;
+    const double from = loop.vertexParam(segment), to = loop.vertexParam(segment + 1);
+    u[i] += (v - from < to - v ? from - v : to - v);
   }
   // Outer nodes: one per dual vertex; corners replace the nearest one where the order allows.
   std::vector<OuterNode> outer(m);
@@ -164,6 +246,15 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
   std::vector<std::uint32_t> b(n);
   for (std::size_t j = 0; j < n; ++j) {
     const Vec3d p = loop.pointAt(nodes[j].param + base);
+    double v = std::fmod(nodes[j].param + base, length);
+    if (v < 0.0) v += length;
+    std::size_t segment = target.segmentAt(loop, v);
+    if (target.segmentCurve[segment] == kNoCurve)  // a bridge end: take the loop's curve
+      segment = (segment + (v - loop.vertexParam(segment) < loop.vertexParam(segment + 1) - v
+                                ? target.points.size() - 1
+                                : 1)) %
+                target.points.size();
+    const std::uint32_t curve = target.segmentCurve[segment];
     b[j] = static_cast<std::uint32_t>(mesh.points.size());
     mesh.points.push_back({p[0], p[1], p[2]});
     mesh.constraints.push_back(nodes[j].corner ? PointConstraint{PointRole::Corner, curve}
@@ -203,10 +294,10 @@ StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>
   for (std::uint32_t c : loopCurves) loops.emplace_back(mesh.curves[c].points, true);
   const std::vector<std::vector<std::uint32_t>> dualLoops = dualBoundaryLoops(mesh);
 
-  // Match every dual loop to the original loop most of its vertices are closest to.
-  std::vector<std::size_t> match(dualLoops.size(), loops.size());
+  // Votes: for every dual loop, how many of its vertices are closest to each original loop.
+  std::vector<std::vector<std::size_t>> votes(dualLoops.size(),
+                                              std::vector<std::size_t>(loops.size(), 0));
   for (std::size_t d = 0; d < dualLoops.size(); ++d) {
-    std::vector<std::size_t> votes(loops.size(), 0);
     for (std::uint32_t v : dualLoops[d]) {
       const Vec3d p = toVec(mesh.points[v]);
       double best = std::numeric_limits<double>::infinity();
@@ -217,19 +308,17 @@ StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>
         loops[l].closestParam(p, distance);
         if (distance < best) best = distance, bestLoop = l;
       }
-      if (bestLoop < loops.size()) ++votes[bestLoop];
+      if (bestLoop < loops.size()) ++votes[d][bestLoop];
     }
-    if (!loops.empty())
-      match[d] = std::size_t(std::max_element(votes.begin(), votes.end()) - votes.begin());
   }
+  // Each original loop goes to the dual loop with the most votes for it (ties: the first); a dual
+  // loop that gets several original loops joins them by bridges (the dual mesh could not pass
+  // between them).
   std::vector<std::size_t> taken(loops.size(), dualLoops.size());
-  for (std::size_t d = 0; d < dualLoops.size(); ++d) {
-    const std::size_t l = match[d];
-    if (l < loops.size() &&
-        (taken[l] == dualLoops.size() || dualLoops[d].size() > dualLoops[taken[l]].size()))
-      taken[l] = d;
-  }
   for (std::size_t l = 0; l < loops.size(); ++l) {
+    for (std::size_t d = 0; d < dualLoops.size(); ++d)
+      if (votes[d][l] > 0 && (taken[l] == dualLoops.size() || votes[d][l] > votes[taken[l]][l]))
+        taken[l] = d;
     if (taken[l] == dualLoops.size()) {
       throw std::runtime_error("extraction: boundary loop " + std::to_string(l) + " at " +
                                describePoint(loops[l].point(0)) +
@@ -237,6 +326,8 @@ StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>
                                "voxel size there)");
     }
   }
+  std::vector<std::vector<std::uint32_t>> loopsOfDual(dualLoops.size());
+  for (std::size_t l = 0; l < loops.size(); ++l) loopsOfDual[taken[l]].push_back(loopCurves[l]);
 
   // Remove stray pieces: components with a boundary of which no loop was taken.
   Components components(mesh.points.size());
@@ -246,15 +337,24 @@ StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>
   for (std::size_t d = 0; d < dualLoops.size(); ++d) {
     const std::uint32_t root = components.find(dualLoops[d].front());
     hasBoundary[root] = 1;
-    if (match[d] < loops.size() && taken[match[d]] == d) keepsLoop[root] = 1;
+    if (!loopsOfDual[d].empty()) keepsLoop[root] = 1;
   }
+  // A boundary loop of a kept piece that no original loop takes is a gap inside the surface (a
+  // grid edge whose quad is missing next to a boundary): closed by a fan of quads (a triangle
+  // last when the loop is odd), oriented like the mesh.
+  std::vector<std::array<CornerIndex, 4>> patches;
   for (std::size_t d = 0; d < dualLoops.size(); ++d) {
     const std::uint32_t root = components.find(dualLoops[d].front());
-    const bool takenHere = match[d] < loops.size() && taken[match[d]] == d;
-    if (keepsLoop[root] && !takenHere) {
-      throw std::runtime_error("extraction: the dual mesh has a boundary loop near " +
-                               describePoint(toVec(mesh.points[dualLoops[d].front()])) +
-                               " that no original boundary loop takes");
+    if (!keepsLoop[root] || !loopsOfDual[d].empty()) continue;
+    std::vector<std::uint32_t> hole(dualLoops[d].rbegin(), dualLoops[d].rend());
+    for (std::size_t i = 1; i + 1 < hole.size(); i += 2) {
+      if (i + 2 < hole.size()) {
+        patches.push_back({hole[0], hole[i], hole[i + 1], hole[i + 2]});
+        ++stats.filledQuads;
+      } else {
+        patches.push_back({hole[0], hole[i], hole[i + 1], kNoCorner});
+        ++stats.filledTriangles;
+      }
     }
   }
   const std::size_t before = mesh.faces.size();
@@ -265,19 +365,11 @@ StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>
                                   }),
                    mesh.faces.end());
   stats.removedFaces = before - mesh.faces.size();
+  mesh.faces.insert(mesh.faces.end(), patches.begin(), patches.end());
 
-  for (std::size_t l = 0; l < loops.size(); ++l) {
-    std::vector<double> cornerParams;
-    for (std::size_t i = 0; i < loops[l].pointCount(); ++i) {
-      const Vec3d& p = loops[l].point(i);
-      for (const auto& corner : corners) {
-        if (corner[0] == p[0] && corner[1] == p[1] && corner[2] == p[2]) {
-          cornerParams.push_back(loops[l].vertexParam(i));
-          break;
-        }
-      }
-    }
-    buildStrip(mesh, dualLoops[taken[l]], loops[l], loopCurves[l], cornerParams, stats);
+  for (std::size_t d = 0; d < dualLoops.size(); ++d) {
+    if (loopsOfDual[d].empty()) continue;
+    buildStrip(mesh, dualLoops[d], joinLoops(mesh, loopsOfDual[d], corners), stats);
   }
   return stats;
 }

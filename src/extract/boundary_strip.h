@@ -16,6 +16,8 @@ struct StripStats {
   std::uint64_t quads = 0;
   std::uint64_t triangles = 0;
   std::uint64_t removedFaces = 0;  ///< faces of stray dual pieces removed (see below)
+  std::uint64_t filledQuads = 0;      ///< quads closing gaps inside the dual mesh
+  std::uint64_t filledTriangles = 0;  ///< triangles closing gaps inside the dual mesh
 };
 
 /// Rebuilds the boundary of `mesh` up to the original boundary loops.
@@ -32,8 +34,12 @@ struct StripStats {
 ///                    mesh on their left, as the original loops do)
 /// @param loopCurves  the indices into mesh.curves of the original boundary loops (closed)
 /// @param corners     feature points; those equal to a vertex of a loop are its corners
+/// A boundary loop of a kept piece that no original loop takes is a gap inside the surface and is
+/// closed by a fan of quads. Where one dual loop takes several original loops (the dual mesh could
+/// not pass between two holes, or a hole and the outer contour), they are joined by bridges at
+/// their closest points, so the strip spans the narrow neck between them.
 /// Throws std::runtime_error naming the loop (index and a point of it) when an original loop has
-/// no dual loop to join, or a dual piece keeps a boundary loop that no original loop takes.
+/// no dual loop to join.
 StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& loopCurves,
                                 const std::vector<std::array<double, 3>>& corners);
 

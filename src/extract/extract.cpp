@@ -33,6 +33,45 @@ void removeUnusedPoints(QuadMesh& mesh) {
       face[std::size_t(c)] = newIndex[face[std::size_t(c)]];
 }
 
+/// Merges points with identical coordinates (dual vertices snapped onto one feature point, the
+/// ends of a bridge in the boundary strip), keeping the first; a quad that loses a corner becomes
+/// a triangle, faces with fewer than three distinct corners are dropped. Returns the number of
+/// faces dropped.
+std::uint64_t weldCoincidentPoints(QuadMesh& mesh) {
+  std::vector<CornerIndex> order(mesh.points.size());
+  for (CornerIndex i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](CornerIndex a, CornerIndex b) {
+    return mesh.points[a] < mesh.points[b];
+  });
+  std::vector<CornerIndex> representative(mesh.points.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const bool same = k > 0 && mesh.points[order[k]] == mesh.points[order[k - 1]];
+    representative[order[k]] = same ? representative[order[k - 1]] : order[k];
+  }
+  std::uint64_t dropped = 0;
+  std::vector<std::array<CornerIndex, 4>> faces;
+  faces.reserve(mesh.faces.size());
+  for (const auto& face : mesh.faces) {
+    std::array<CornerIndex, 4> out{kNoCorner, kNoCorner, kNoCorner, kNoCorner};
+    int count = 0;
+    const int n = cornerCount(face);
+    for (int c = 0; c < n; ++c) {
+      const CornerIndex p = representative[face[std::size_t(c)]];
+      if (count > 0 && out[std::size_t(count - 1)] == p) continue;
+      out[std::size_t(count++)] = p;
+    }
+    if (count > 1 && out[std::size_t(count - 1)] == out[0]) out[std::size_t(--count)] = kNoCorner;
+    const bool distinct = count < 3 || (out[0] != out[2] && (count < 4 || out[1] != out[3]));
+    if (count < 3 || !distinct) {
+      ++dropped;
+      continue;
+    }
+    faces.push_back(out);
+  }
+  mesh.faces = std::move(faces);
+  return dropped;
+}
+
 MeshCurve toMeshCurve(const VolumeCurve& curve, PointRole role) {
   return {curve.points, curve.closed, role};
 }
@@ -87,6 +126,7 @@ QuadMesh extractQuadMesh(const Volume& volume, const ExtractSettings& settings,
     counts.stripQuads = strip.quads;
     counts.stripTriangles = strip.triangles;
   }
+  weldCoincidentPoints(mesh);
   removeUnusedPoints(mesh);
   if (stats) *stats = counts;
   return mesh;

@@ -33,6 +33,8 @@ int runVoxelize(const std::vector<std::string>& args);
 int runInspect(const std::vector<std::string>& args);
 /// `voxremesh slice` (cli_slice.cpp).
 int runSlice(const std::vector<std::string>& args);
+/// `voxremesh extract` (cli_extract.cpp).
+int runExtract(const std::vector<std::string>& args);
 /// `voxremesh quality` (cli_quality.cpp).
 int runQuality(const std::vector<std::string>& args);
 

@@ -27,6 +27,8 @@ constexpr Command kCommands[] = {
      voxremesh::cli::runInspect},
     {"slice", "render one axis-aligned slice of a .vdb volume as a PNG image",
      voxremesh::cli::runSlice},
+    {"extract", "extract the quad mesh (or MC33 triangles) of a .vdb volume",
+     voxremesh::cli::runExtract},
     {"quality", "FE quality criteria of a deck's shells: table, JSON, .vtu",
      voxremesh::cli::runQuality},
 };
