@@ -174,8 +174,9 @@ int run(int argc, char** argv) {
               std::size_t(extractStats.stripTriangles));
   std::printf("  reference surface   %8.4f s\n", surfaceSeconds);
   std::printf("  optimise (best of %d):\n", repeat);
-  std::printf("    clean-up          %8.4f s  (%zu zero-area, %zu doublets)\n", best.cleanupSeconds,
-              best.cleanup.zeroAreaFaces, best.cleanup.valence2Points);
+  std::printf("    clean-up          %8.4f s  (%zu zero-area, %zu doublets, %zu folded)\n",
+              best.cleanupSeconds, best.cleanup.zeroAreaFaces, best.cleanup.valence2Points,
+              best.cleanup.foldedCurveQuads);
   std::printf("    rhombic collapse  %8.4f s  (%zu quads)\n", best.rhombicSeconds,
               best.rhombicCollapsed);
   std::printf("    relaxation        %8.4f s\n", best.relaxSeconds);

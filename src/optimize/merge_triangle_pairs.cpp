@@ -50,23 +50,30 @@ std::size_t mergeTrianglePairs(QuadMesh& mesh, const QualitySettings& settings) 
   const opt::Topology topology = opt::buildTopology(mesh);
   // Candidates: (score, first triangle, second triangle, quad).
   std::vector<std::tuple<double, std::uint32_t, std::uint32_t, std::array<CornerIndex, 4>>> pairs;
-  const auto& edges = topology.edges;
-  for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
-    if (edges[i][0] != edges[i + 1][0] || edges[i][1] != edges[i + 1][1]) continue;
-    if (i + 2 < edges.size() && edges[i + 2][0] == edges[i][0] && edges[i + 2][1] == edges[i][1])
-      continue;  // not a manifold edge
-    const std::uint32_t f1 = edges[i][2], f2 = edges[i + 1][2];
-    if (cornerCount(mesh.faces[f1]) != 3 || cornerCount(mesh.faces[f2]) != 3) continue;
-    std::array<CornerIndex, 4> quad{};
-    if (!pairQuad(mesh.faces[f1], mesh.faces[f2], quad)) continue;
-    // The new quad's diagonal (c, d) must not be an edge already.
-    if (topology.edgeFaces(quad[1], quad[3]) != 0) continue;
-    std::array<std::array<double, 3>, 4> p;
-    for (std::size_t k = 0; k < 4; ++k) p[k] = mesh.points[quad[k]];
-    const ElementQuality q = elementQuality(p, 4);
-    if (!passes(q, settings)) continue;
-    const double score = std::max(std::abs(q.minAngleDeg - 90.0), std::abs(q.maxAngleDeg - 90.0));
-    pairs.emplace_back(score, f1, f2, quad);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (cornerCount(mesh.faces[f]) != 3) continue;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const CornerIndex a = mesh.faces[f][k], b = mesh.faces[f][(k + 1) % 3];
+      if (topology.edgeFaces(a, b) != 2) continue;  // boundary or non-manifold edge
+      // The other face of edge (a, b); each pair is taken from its lower triangle.
+      std::uint32_t other = kNoCorner;
+      for (const std::uint32_t* g = topology.facesBegin(a); g != topology.facesEnd(a); ++g) {
+        const auto& face = mesh.faces[*g];
+        if (*g != f && std::find(face.begin(), face.end(), b) != face.end()) other = *g;
+      }
+      if (other == kNoCorner || other < f || cornerCount(mesh.faces[other]) != 3) continue;
+      const auto f1 = static_cast<std::uint32_t>(f), f2 = other;
+      std::array<CornerIndex, 4> quad{};
+      if (!pairQuad(mesh.faces[f1], mesh.faces[f2], quad)) continue;
+      // The new quad's diagonal (c, d) must not be an edge already.
+      if (topology.edgeFaces(quad[1], quad[3]) != 0) continue;
+      std::array<std::array<double, 3>, 4> p;
+      for (std::size_t c = 0; c < 4; ++c) p[c] = mesh.points[quad[c]];
+      const ElementQuality q = elementQuality(p, 4);
+      if (!passes(q, settings)) continue;
+      const double score = std::max(std::abs(q.minAngleDeg - 90.0), std::abs(q.maxAngleDeg - 90.0));
+      pairs.emplace_back(score, f1, f2, quad);
+    }
   }
   std::sort(pairs.begin(), pairs.end(), [](const auto& x, const auto& y) {
     return std::tie(std::get<0>(x), std::get<1>(x), std::get<2>(x)) <

@@ -1,6 +1,9 @@
 // The connectivity and point-merging helpers the optimisation steps share (mesh_topology.h).
 #include "optimize/mesh_topology.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -15,20 +18,6 @@ namespace {
 
 bool isCurveRole(PointRole role) {
   return role == PointRole::Feature || role == PointRole::Boundary || role == PointRole::Junction;
-}
-
-/// Builds CSR lists from (key, value) pairs sorted by key then value.
-void toCsr(std::vector<std::array<std::uint32_t, 2>>& pairs, std::size_t keys,
-           std::vector<std::uint32_t>& start, std::vector<std::uint32_t>& list) {
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  start.assign(keys + 1, 0);
-  list.resize(pairs.size());
-  for (std::size_t i = 0; i < pairs.size(); ++i) {
-    ++start[pairs[i][0] + 1];
-    list[i] = pairs[i][1];
-  }
-  for (std::size_t k = 0; k < keys; ++k) start[k + 1] += start[k];
 }
 
 }  // namespace
@@ -62,41 +51,79 @@ void checkMesh(const QuadMesh& mesh) {
 }
 
 std::size_t Topology::edgeFaces(CornerIndex a, CornerIndex b) const {
-  const std::uint32_t lo = std::min(a, b), hi = std::max(a, b);
-  const auto first =
-      std::lower_bound(edges.begin(), edges.end(), std::array<std::uint32_t, 3>{lo, hi, 0});
-  std::size_t count = 0;
-  for (auto it = first; it != edges.end() && (*it)[0] == lo && (*it)[1] == hi; ++it) ++count;
-  return count;
+  const std::uint32_t* found = std::lower_bound(nbrsBegin(a), nbrsEnd(a), b);
+  return found != nbrsEnd(a) && *found == b
+             ? nbrFaces[static_cast<std::size_t>(found - nbrList.data())]
+             : 0;
 }
 
 Topology buildTopology(const QuadMesh& mesh, const std::vector<std::uint8_t>* deleted) {
   Topology t;
-  std::vector<std::array<std::uint32_t, 2>> vf, vv;
+  const std::size_t points = mesh.points.size();
+  // Faces per point: count, prefix sum, fill (faces come in ascending order).
+  t.faceStart.assign(points + 1, 0);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     if (deleted && (*deleted)[f]) continue;
-    const auto& face = mesh.faces[f];
-    const int n = cornerCount(face);
-    for (int k = 0; k < n; ++k) {
-      const CornerIndex a = face[static_cast<std::size_t>(k)];
-      const CornerIndex b = face[static_cast<std::size_t>((k + 1) % n)];
-      vf.push_back({a, static_cast<std::uint32_t>(f)});
-      vv.push_back({a, b});
-      vv.push_back({b, a});
-      t.edges.push_back({std::min(a, b), std::max(a, b), static_cast<std::uint32_t>(f)});
-    }
+    for (int k = 0; k < cornerCount(mesh.faces[f]); ++k)
+      ++t.faceStart[mesh.faces[f][static_cast<std::size_t>(k)] + 1];
   }
-  std::sort(t.edges.begin(), t.edges.end());
-  toCsr(vf, mesh.points.size(), t.faceStart, t.faceList);
-  toCsr(vv, mesh.points.size(), t.nbrStart, t.nbrList);
-  t.boundary.assign(mesh.points.size(), 0);
-  for (std::size_t i = 0; i < t.edges.size();) {
-    std::size_t j = i;
-    while (j < t.edges.size() && t.edges[j][0] == t.edges[i][0] && t.edges[j][1] == t.edges[i][1])
-      ++j;
-    if (j - i == 1) t.boundary[t.edges[i][0]] = t.boundary[t.edges[i][1]] = 1;
-    i = j;
+  for (std::size_t v = 0; v < points; ++v) t.faceStart[v + 1] += t.faceStart[v];
+  t.faceList.resize(t.faceStart[points]);
+  std::vector<std::uint32_t> fill(t.faceStart.begin(), t.faceStart.end() - 1);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (deleted && (*deleted)[f]) continue;
+    for (int k = 0; k < cornerCount(mesh.faces[f]); ++k)
+      t.faceList[fill[mesh.faces[f][static_cast<std::size_t>(k)]]++] =
+          static_cast<std::uint32_t>(f);
   }
+  // Neighbours per point: the two corners beside it in each of its faces, sorted, counted.
+  std::vector<std::uint32_t> candidates(2 * t.faceList.size());
+  std::vector<std::uint32_t> unique(points + 1, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t v = r.begin(); v < r.end(); ++v) {
+                        std::uint32_t* out = candidates.data() + 2 * t.faceStart[v];
+                        std::uint32_t* const begin = out;
+                        for (std::uint32_t i = t.faceStart[v]; i < t.faceStart[v + 1]; ++i) {
+                          const auto& face = mesh.faces[t.faceList[i]];
+                          const int n = cornerCount(face);
+                          int k = 0;
+                          while (face[static_cast<std::size_t>(k)] != v) ++k;
+                          *out++ = face[static_cast<std::size_t>((k + n - 1) % n)];
+                          *out++ = face[static_cast<std::size_t>((k + 1) % n)];
+                        }
+                        std::sort(begin, out);
+                        unique[v + 1] = static_cast<std::uint32_t>(std::unique(begin, out) - begin);
+                      }
+                    });
+  for (std::size_t v = 0; v < points; ++v) unique[v + 1] += unique[v];
+  t.nbrStart = std::move(unique);
+  t.nbrList.resize(t.nbrStart[points]);
+  t.nbrFaces.assign(t.nbrList.size(), 0);
+  t.boundary.assign(points, 0);
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, points), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t v = r.begin(); v < r.end(); ++v) {
+          const std::uint32_t* sorted = candidates.data() + 2 * t.faceStart[v];
+          std::copy(sorted, sorted + t.degree(static_cast<CornerIndex>(v)),
+                    t.nbrList.begin() + t.nbrStart[v]);
+          // Faces of edge (v, w): the faces of v in which w is beside v.
+          for (std::uint32_t i = t.faceStart[v]; i < t.faceStart[v + 1]; ++i) {
+            const auto& face = mesh.faces[t.faceList[i]];
+            const int n = cornerCount(face);
+            int k = 0;
+            while (face[static_cast<std::size_t>(k)] != v) ++k;
+            for (const int side : {n - 1, 1}) {
+              const std::uint32_t w = face[static_cast<std::size_t>((k + side) % n)];
+              const auto at = std::lower_bound(t.nbrList.begin() + t.nbrStart[v],
+                                               t.nbrList.begin() + t.nbrStart[v + 1], w);
+              ++t.nbrFaces[static_cast<std::size_t>(at - t.nbrList.begin())];
+            }
+          }
+          for (std::uint32_t i = t.nbrStart[v]; i < t.nbrStart[v + 1]; ++i)
+            if (t.nbrFaces[i] == 1) t.boundary[v] = 1;
+        }
+      });
   return t;
 }
 

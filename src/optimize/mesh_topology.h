@@ -28,9 +28,8 @@ inline PointRole roleOf(const QuadMesh& mesh, CornerIndex v) {
 struct Topology {
   std::vector<std::uint32_t> faceStart, faceList;  ///< point -> faces using it
   std::vector<std::uint32_t> nbrStart, nbrList;    ///< point -> points sharing an edge with it
-  std::vector<std::uint8_t> boundary;              ///< point lies on an edge with one face
-  /// Every face edge as (lower point, higher point, face), sorted.
-  std::vector<std::array<std::uint32_t, 3>> edges;
+  std::vector<std::uint32_t> nbrFaces;  ///< per nbrList entry: the number of faces of that edge
+  std::vector<std::uint8_t> boundary;   ///< point lies on an edge with one face
 
   std::size_t faceCount(CornerIndex v) const { return faceStart[v + 1] - faceStart[v]; }
   const std::uint32_t* facesBegin(CornerIndex v) const { return faceList.data() + faceStart[v]; }
@@ -38,11 +37,12 @@ struct Topology {
   std::size_t degree(CornerIndex v) const { return nbrStart[v + 1] - nbrStart[v]; }
   const std::uint32_t* nbrsBegin(CornerIndex v) const { return nbrList.data() + nbrStart[v]; }
   const std::uint32_t* nbrsEnd(CornerIndex v) const { return nbrList.data() + nbrStart[v + 1]; }
-  /// Number of faces with edge (a, b).
+  /// Number of faces with edge (a, b) (0 when a and b share no edge).
   std::size_t edgeFaces(CornerIndex a, CornerIndex b) const;
 };
 
-/// Builds the connectivity of the mesh (faces flagged in `deleted`, when given, are left out).
+/// Builds the connectivity of the mesh (faces flagged in `deleted`, when given, are left out):
+/// counting sorts, neighbour lists sorted per point in parallel; deterministic.
 Topology buildTopology(const QuadMesh& mesh, const std::vector<std::uint8_t>* deleted = nullptr);
 
 /// Where point v may be when it would like to be at `wanted`: Corner: where it is; curve point:
