@@ -76,6 +76,13 @@ TEST(ReferenceSurface, MatchesBruteForce) {
     EXPECT_NEAR(std::sqrt(dot(d, d)), hits[i].distance, 1e-12);
     const voxremesh::SurfaceHit single = surface.closestPoint(queries[i]);
     EXPECT_EQ(single.face, hits[i].face);
+    // A hint only speeds the search up: any face (or none) gives the same answer.
+    for (const std::uint32_t hint : {0u, static_cast<std::uint32_t>(i % 144), 143u, 1000u}) {
+      const voxremesh::SurfaceHit hinted = surface.closestPoint(queries[i], hint);
+      EXPECT_EQ(hinted.face, single.face);
+      EXPECT_EQ(hinted.point, single.point);
+      EXPECT_EQ(hinted.distance, single.distance);
+    }
     EXPECT_LT(hits[i].face, mesh.faces.size());
   }
 }

@@ -43,6 +43,12 @@ class ReferenceSurface {
   /// The closest point of the surface to p. Precondition: !empty().
   SurfaceHit closestPoint(const std::array<double, 3>& p) const;
 
+  /// The same closest point as closestPoint(p), found faster when face `hintFace` of the source
+  /// mesh (e.g. the face of the previous answer for a point that moved a little) is close to p:
+  /// its triangles bound the search from the start. Any hint gives the same answer; a hint that
+  /// is not a face index is ignored.
+  SurfaceHit closestPoint(const std::array<double, 3>& p, std::uint32_t hintFace) const;
+
   /// The closest points of many queries, computed in parallel (TBB); result[i] is for queries[i].
   /// Precondition: !empty().
   std::vector<SurfaceHit> closestPoints(const std::vector<std::array<double, 3>>& queries) const;
@@ -59,9 +65,10 @@ class ReferenceSurface {
 
   std::vector<std::array<double, 3>> points_;
   std::vector<std::array<std::uint32_t, 3>> tris_;
-  std::vector<std::uint32_t> triFace_;  ///< the source face of each triangle
-  std::vector<std::uint32_t> order_;    ///< triangles in leaf order
-  std::vector<Node> nodes_;             ///< nodes_[0] is the root
+  std::vector<std::uint32_t> triFace_;       ///< the source face of each triangle
+  std::vector<std::uint32_t> faceTriStart_;  ///< per source face, its first triangle (+ end)
+  std::vector<std::uint32_t> order_;         ///< triangles in leaf order
+  std::vector<Node> nodes_;                  ///< nodes_[0] is the root
 };
 
 /// The closest point of segment [a, b] to p (a when the segment has zero length).

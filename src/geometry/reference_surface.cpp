@@ -94,6 +94,7 @@ ReferenceSurface::ReferenceSurface(const QuadMesh& mesh) : points_(mesh.points) 
       if (!std::isfinite(x))
         throw std::invalid_argument("reference surface: a point has a non-finite coordinate");
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    faceTriStart_.push_back(static_cast<std::uint32_t>(tris_.size()));
     const auto& face = mesh.faces[f];
     const int n = cornerCount(face);
     for (int k = 0; k < n; ++k)
@@ -107,6 +108,7 @@ ReferenceSurface::ReferenceSurface(const QuadMesh& mesh) : points_(mesh.points) 
       triFace_.push_back(static_cast<std::uint32_t>(f));
     }
   }
+  faceTriStart_.push_back(static_cast<std::uint32_t>(tris_.size()));
   if (tris_.empty()) return;
   std::vector<Vec3> centroids(tris_.size());
   for (std::size_t t = 0; t < tris_.size(); ++t)
@@ -165,9 +167,28 @@ std::uint32_t ReferenceSurface::build(std::uint32_t begin, std::uint32_t end,
 }
 
 SurfaceHit ReferenceSurface::closestPoint(const std::array<double, 3>& p) const {
+  return closestPoint(p, std::numeric_limits<std::uint32_t>::max());
+}
+
+SurfaceHit ReferenceSurface::closestPoint(const std::array<double, 3>& p,
+                                          std::uint32_t hintFace) const {
   SurfaceHit hit;
   double best2 = std::numeric_limits<double>::infinity();
   std::uint32_t bestTri = std::numeric_limits<std::uint32_t>::max();
+  // The best so far under the order (squared distance, triangle index), whatever the visit order.
+  auto consider = [&](std::uint32_t t) {
+    const auto& c = tris_[t];
+    const Vec3 q = closestOnTriangle(p, points_[c[0]], points_[c[1]], points_[c[2]]);
+    const double d2 = dot(p - q, p - q);
+    if (d2 < best2 || (d2 == best2 && t < bestTri)) {
+      best2 = d2;
+      bestTri = t;
+      hit.point = q;
+    }
+  };
+  if (faceTriStart_.size() > 1 && hintFace < faceTriStart_.size() - 1)
+    for (std::uint32_t t = faceTriStart_[hintFace]; t < faceTriStart_[hintFace + 1]; ++t)
+      consider(t);
   std::uint32_t stack[128];
   std::size_t top = 0;
   stack[top++] = 0;
@@ -175,17 +196,7 @@ SurfaceHit ReferenceSurface::closestPoint(const std::array<double, 3>& p) const 
     const Node& node = nodes_[stack[--top]];
     if (boxDistance2(p, node.lo, node.hi) > best2) continue;
     if (node.count > 0) {
-      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
-        const std::uint32_t t = order_[i];
-        const auto& c = tris_[t];
-        const Vec3 q = closestOnTriangle(p, points_[c[0]], points_[c[1]], points_[c[2]]);
-        const double d2 = dot(p - q, p - q);
-        if (d2 < best2 || (d2 == best2 && t < bestTri)) {
-          best2 = d2;
-          bestTri = t;
-          hit.point = q;
-        }
-      }
+      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) consider(order_[i]);
       continue;
     }
     // Visit the nearer child first: push it last.

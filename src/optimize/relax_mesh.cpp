@@ -85,15 +85,24 @@ Vec3 freeTarget(const QuadMesh& mesh, const opt::Topology& t, CornerIndex v) {
   return mesh.points[v] + move - unit * dot(move, unit);
 }
 
+/// The closest point of `original` to q; `hint` is the face of the point's previous projection
+/// (updated), which only speeds the search up.
+Vec3 project(const ReferenceSurface& original, const Vec3& q, std::uint32_t& hint) {
+  const SurfaceHit hit = original.closestPoint(q, hint);
+  hint = hit.face;
+  return hit.point;
+}
+
 /// The new position of point v in one relaxation step (see relaxMesh); `along` holds its curve
-/// or boundary neighbours.
+/// or boundary neighbours, `hint` the face of its previous projection on `original`.
 Vec3 relaxed(const QuadMesh& mesh, const opt::Topology& t, const ReferenceSurface& original,
-             const std::vector<CornerIndex>& along, CornerIndex v, double damping) {
+             const std::vector<CornerIndex>& along, CornerIndex v, double damping,
+             std::uint32_t& hint) {
   const Vec3& p = mesh.points[v];
   const PointRole role = opt::roleOf(mesh, v);
   if (t.faceCount(v) == 0 || role == PointRole::Corner) return p;
   if (role == PointRole::Free && !t.boundary[v])
-    return original.closestPoint(p + (freeTarget(mesh, t, v) - p) * damping).point;
+    return project(original, p + (freeTarget(mesh, t, v) - p) * damping, hint);
   if (along.size() != 2) return role == PointRole::Free ? p : opt::constrainedPosition(mesh, v, p);
   const Vec3& a = mesh.points[along[0]];
   const Vec3& b = mesh.points[along[1]];
@@ -103,7 +112,7 @@ Vec3 relaxed(const QuadMesh& mesh, const opt::Topology& t, const ReferenceSurfac
     // where the boundary turns by more than kBoundaryCornerDeg it is a corner and stays.
     if (angleDeg(p - a, b - p) > kBoundaryCornerDeg) return p;
     const Vec3 tangent = normalized(b - a);
-    return original.closestPoint(p + tangent * (dot(move, tangent) * damping)).point;
+    return project(original, p + tangent * (dot(move, tangent) * damping), hint);
   }
   return opt::constrainedPosition(mesh, v, p + move * damping);
 }
@@ -122,12 +131,13 @@ void relaxMesh(QuadMesh& mesh, const ReferenceSurface& original, int iterations,
   std::vector<std::vector<CornerIndex>> along(count);
   for (CornerIndex v = 0; v < count; ++v) along[v] = curveNeighbours(mesh, topology, v);
   std::vector<Vec3> next(count);
+  std::vector<std::uint32_t> hints(count, kNoCorner);
   for (int iteration = 0; iteration < iterations; ++iteration) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 64),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t v = r.begin(); v < r.end(); ++v)
                           next[v] = relaxed(mesh, topology, original, along[v],
-                                            static_cast<CornerIndex>(v), damping);
+                                            static_cast<CornerIndex>(v), damping, hints[v]);
                       });
     mesh.points.swap(next);
   }

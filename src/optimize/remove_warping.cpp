@@ -15,23 +15,27 @@ using namespace geom;  // NOLINT: the vector operators
 
 namespace {
 
-/// The warping angle of a quad and the plane its corners are projected on.
+/// Whether a quad is warped beyond the threshold, and the plane its corners are projected on.
 struct QuadPlane {
-  double warpingDeg = 0.0;
+  bool warped = false;
   Vec3 centroid{};
   Vec3 normal{};  ///< unit sum of the four diagonal-split triangle normals
 };
 
-QuadPlane quadPlane(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face) {
+/// The angle between a and b exceeds the angle whose cosine is cosLimit (false for a zero vector,
+/// as quality.h counts a split with a zero-area triangle as flat).
+bool wider(const Vec3& a, const Vec3& b, double cosLimit) {
+  const double lengths = norm(a) * norm(b);
+  return lengths > 0.0 && dot(a, b) < cosLimit * lengths;
+}
+
+QuadPlane quadPlane(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face, double cosLimit) {
   std::array<Vec3, 4> p;
   for (std::size_t k = 0; k < 4; ++k) p[k] = mesh.points[face[k]];
   QuadPlane plane;
   const Vec3 n012 = cross(p[1] - p[0], p[2] - p[0]), n023 = cross(p[2] - p[0], p[3] - p[0]);
   const Vec3 n123 = cross(p[2] - p[1], p[3] - p[1]), n130 = cross(p[3] - p[1], p[0] - p[1]);
-  const auto angle = [](const Vec3& a, const Vec3& b) {
-    return norm(a) == 0.0 || norm(b) == 0.0 ? 0.0 : angleDeg(a, b);
-  };
-  plane.warpingDeg = std::max(angle(n012, n023), angle(n123, n130));
+  plane.warped = wider(n012, n023, cosLimit) || wider(n123, n130, cosLimit);
   plane.centroid = (p[0] + p[1] + p[2] + p[3]) * 0.25;
   plane.normal = normalized(n012 + n023 + n123 + n130);
   return plane;
@@ -47,6 +51,7 @@ WarpingResult removeWarping(QuadMesh& mesh, double maxWarpingDeg, int maxIterati
   opt::checkMesh(mesh);
   const opt::Topology topology = opt::buildTopology(mesh);
   const std::size_t faceCount = mesh.faces.size();
+  const double cosLimit = std::cos(maxWarpingDeg * 0.017453292519943295);
   std::vector<QuadPlane> planes(faceCount);
   std::vector<std::uint8_t> warped(faceCount, 0);
   auto measure = [&] {
@@ -55,8 +60,8 @@ WarpingResult removeWarping(QuadMesh& mesh, double maxWarpingDeg, int maxIterati
                         for (std::size_t f = r.begin(); f < r.end(); ++f) {
                           warped[f] = 0;
                           if (cornerCount(mesh.faces[f]) != 4) continue;
-                          planes[f] = quadPlane(mesh, mesh.faces[f]);
-                          warped[f] = planes[f].warpingDeg > maxWarpingDeg ? 1 : 0;
+                          planes[f] = quadPlane(mesh, mesh.faces[f], cosLimit);
+                          warped[f] = planes[f].warped ? 1 : 0;
                         }
                       });
     std::size_t count = 0;
