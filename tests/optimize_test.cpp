@@ -118,6 +118,22 @@ TEST(RemoveWarping, FlattensACheckerboardOfLiftedPoints) {
   expectConstraintsHold(mesh, n);
 }
 
+TEST(RemoveWarping, MovesNoPointFartherThanAllowed) {
+  const int n = 8;
+  QuadMesh mesh = grid(n);
+  for (int j = 1; j < n; ++j)
+    for (int i = 1; i < n; ++i) mesh.points[j * (n + 1) + i][2] = ((i + j) % 2 ? 0.15 : -0.15);
+  const QuadMesh planted = mesh;
+  const voxremesh::WarpingResult r = voxremesh::removeWarping(mesh, 12.0, 200, 0.05);
+  EXPECT_LT(r.warpedAfter, r.warpedBefore);  // 0.05 of the 0.15 lift flattens some quads
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) {
+    const auto& a = mesh.points[v];
+    const auto& b = planted.points[v];
+    EXPECT_LE(std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]), 0.05 + 1e-12) << v;
+  }
+  EXPECT_THROW(voxremesh::removeWarping(mesh, 12.0, 10, 0.0), std::invalid_argument);
+}
+
 TEST(RemoveWarping, LeavesFlatMeshesAndRefusesBadThresholds) {
   QuadMesh mesh = grid(3);
   const QuadMesh before = mesh;
@@ -254,6 +270,30 @@ TEST(CleanUpMesh, CollapsesQuadsFoldedAlongACurve) {
   }
   EXPECT_DOUBLE_EQ(area, 4.0);  // the outline is kept
   for (const auto& p : mesh.points) EXPECT_TRUE(p[1] == 0.0 || p[1] == 1.0);
+}
+
+TEST(CleanUpMesh, CollapsesShortEdgesOnlyWhenAsked) {
+  const int n = 4;
+  QuadMesh mesh = grid(n);
+  mesh.points[2 * (n + 1) + 2][0] = 2.9;  // edge to (3, 2) now 0.1 long
+  QuadMesh untouched = mesh;
+  EXPECT_EQ(voxremesh::cleanUpMesh(untouched, 1e-9).shortEdges, 0u);
+  EXPECT_EQ(untouched.faces.size(), std::size_t(n * n));
+  const voxremesh::CleanupResult r = voxremesh::cleanUpMesh(mesh, 1e-9, 0.2);
+  EXPECT_EQ(r.shortEdges, 1u);
+  EXPECT_EQ(mesh.points.size(), std::size_t((n + 1) * (n + 1) - 1));
+  std::size_t triangles = 0;
+  for (const auto& f : mesh.faces) triangles += voxremesh::cornerCount(f) == 3 ? 1 : 0;
+  EXPECT_EQ(triangles, 2u);  // the two quads of the collapsed edge
+  for (const auto& f : mesh.faces)
+    for (int k = 0; k < voxremesh::cornerCount(f); ++k) {
+      const auto& a = mesh.points[f[k]];
+      const auto& b = mesh.points[f[(k + 1) % voxremesh::cornerCount(f)]];
+      EXPECT_GE(std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]), 0.2);
+    }
+  EXPECT_LT(voxremesh::surfaceDistance(mesh, grid(n)).max(), 1e-12);
+  expectConstraintsHold(mesh, n);
+  EXPECT_THROW(voxremesh::cleanUpMesh(mesh, 0.0, -1.0), std::invalid_argument);
 }
 
 TEST(MergeTrianglePairs, JoinsASplitQuadBack) {

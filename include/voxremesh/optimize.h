@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 
 #include "voxremesh/quad_mesh.h"
 #include "voxremesh/quality.h"
@@ -32,14 +33,17 @@ struct WarpingResult {
 /// Warping removal (paper Sect. 5.1). Per iteration, for every quad whose warping angle (quality.h)
 /// exceeds `maxWarpingDeg`, proposes for each of its corners the projection on the plane through
 /// the quad's centroid whose normal is the sum of the four diagonal-split triangle normals; every
-/// point then moves to the mean of its proposals (curve points to the closest point of their curve
-/// after that, corners stay). Repeats until no quad exceeds the threshold, `maxIterations` is
-/// reached, or 10 iterations in a row did not lower the number of warped quads.
+/// point then moves to the mean of its proposals, pulled back to at most `maxMove` from where it
+/// was before the first iteration (curve points to the closest point of their curve after that,
+/// corners stay). Repeats until no quad exceeds the threshold, `maxIterations` is reached, or 10
+/// iterations in a row did not lower the number of warped quads.
 /// @param mesh           the mesh (preconditions at the top of the file)
 /// @param maxWarpingDeg  threshold in degrees, finite and >= 0
 /// @param maxIterations  >= 0
-/// Throws std::invalid_argument for a bad threshold, iteration count or mesh.
-WarpingResult removeWarping(QuadMesh& mesh, double maxWarpingDeg, int maxIterations = 200);
+/// @param maxMove        the largest displacement of a point, > 0 (infinity: unlimited)
+/// Throws std::invalid_argument for a bad threshold, iteration count, displacement or mesh.
+WarpingResult removeWarping(QuadMesh& mesh, double maxWarpingDeg, int maxIterations = 200,
+                            double maxMove = std::numeric_limits<double>::infinity());
 
 /// Rhombic-quad collapse (paper Sect. 5.2). A rhombic quad is a quad whose four points are Free,
 /// not on the mesh boundary, and of odd degree (number of edges at the point), with the two points
@@ -74,12 +78,14 @@ void relaxMesh(QuadMesh& mesh, const ReferenceSurface& original, int iterations 
 /// What cleanUpMesh removed.
 struct CleanupResult {
   std::size_t zeroAreaFaces = 0;   ///< faces removed or reduced by collapsing their shortest edge
+  std::size_t shortEdges = 0;      ///< edges shorter than the short-edge threshold collapsed
   std::size_t valence2Points = 0;  ///< Free interior points in exactly two faces (doublets) removed
   std::size_t foldedCurveQuads = 0;  ///< quads folded along a curve, reduced to triangles
 };
 
-/// Clean-up: (1) zero-area faces: a face with area (quality.h's element area) at most
-/// `zeroArea` gets its shortest edge collapsed (a quad becomes a triangle, a triangle vanishes)
+/// Clean-up: (1) zero-area faces and short edges: a face with area (quality.h's element area) at
+/// most `zeroArea`, or whose shortest edge is shorter than `shortEdge`, gets its shortest edge
+/// collapsed (a quad becomes a triangle, a triangle vanishes)
 /// where the merge keeps the mesh manifold and the constraints allow it (see the top of the file);
 /// (2) doublets: a Free point that is not on the boundary and lies in exactly two faces is removed
 /// and the two faces become one (two quads -> a quad, a quad and a triangle -> a triangle, two
@@ -89,9 +95,10 @@ struct CleanupResult {
 /// nearer of a and c (the quad becomes a triangle; the constraint rules above apply). Rounds
 /// repeat until nothing changes. Unused points are removed at the end (indices of points change;
 /// order is kept).
-/// @param zeroArea  area threshold in model units squared, finite and >= 0
+/// @param zeroArea   area threshold in model units squared, finite and >= 0
+/// @param shortEdge  edge length threshold in model units, finite and >= 0 (0: none)
 /// Throws std::invalid_argument for a bad threshold or mesh.
-CleanupResult cleanUpMesh(QuadMesh& mesh, double zeroArea);
+CleanupResult cleanUpMesh(QuadMesh& mesh, double zeroArea, double shortEdge = 0.0);
 
 /// Triangle-pair merging: two triangles sharing an edge become the quad of their four points when
 /// that quad passes every element criterion of `settings` (quality.h; the length limit with
@@ -117,6 +124,13 @@ struct OptimizeSettings {
   bool mergeTriangles = true;
   /// A face is of zero area below zeroAreaFactor x targetSize^2.
   double zeroAreaFactor = 1e-4;
+  /// Edges shorter than shortEdgeFactor x targetSize are collapsed in the clean-up. Off by default:
+  /// on the bracket 0.2 lowers the failing share from 17.1 % to 14.9 % but raises the triangle
+  /// share from 2.5 % to 4.0 % (each collapse turns two quads into triangles).
+  double shortEdgeFactor = 0.0;
+  /// Warping removal moves no point farther than warpingMoveFactor x targetSize from where it
+  /// started (relaxation left it on the original surface), so the surface stays close.
+  double warpingMoveFactor = 0.1;
 };
 
 /// What optimizeQuadMesh did and how long each step took (wall-clock seconds).

@@ -45,13 +45,15 @@ std::size_t dropRepeatedCorners(QuadMesh& mesh) {
   return changed;
 }
 
-/// One round of shortest-edge collapses of zero-area faces; returns the number done.
-std::size_t collapseZeroAreaFaces(QuadMesh& mesh, double zeroArea) {
+/// One round of shortest-edge collapses of faces with area at most zeroArea or an edge shorter
+/// than shortEdge; the counts of each kind are added to `result`. Returns the number done.
+std::size_t collapseSmallFaces(QuadMesh& mesh, double zeroArea, double shortEdge,
+                               CleanupResult& result) {
   const opt::Topology topology = opt::buildTopology(mesh);
   std::vector<std::uint8_t> locked(mesh.points.size(), 0), deleted(mesh.faces.size(), 0);
   std::size_t done = 0;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    if (deleted[f] || opt::faceArea(mesh, mesh.faces[f]) > zeroArea) continue;
+    if (deleted[f]) continue;
     const auto face = mesh.faces[f];
     const int n = cornerCount(face);
     int shortest = 0;
@@ -61,6 +63,8 @@ std::size_t collapseZeroAreaFaces(QuadMesh& mesh, double zeroArea) {
                                       mesh.points[face[static_cast<std::size_t>((k + 1) % n)]]);
       if (l < length) length = l, shortest = k;
     }
+    const bool zero = opt::faceArea(mesh, face) <= zeroArea;
+    if (!zero && !(length < shortEdge)) continue;
     const CornerIndex u = face[static_cast<std::size_t>(shortest)];
     const CornerIndex v = face[static_cast<std::size_t>((shortest + 1) % n)];
     if (opt::neighbourhoodLocked(mesh, topology, u, locked) ||
@@ -72,6 +76,7 @@ std::size_t collapseZeroAreaFaces(QuadMesh& mesh, double zeroArea) {
     opt::lockNeighbourhood(mesh, topology, u, locked);
     opt::lockNeighbourhood(mesh, topology, v, locked);
     opt::applyMerge(mesh, topology, *merge, deleted);
+    ++(zero ? result.zeroAreaFaces : result.shortEdges);
     ++done;
   }
   opt::eraseFaces(mesh, deleted);
@@ -172,16 +177,18 @@ std::size_t collapseFoldedCurveQuads(QuadMesh& mesh) {
 
 }  // namespace
 
-CleanupResult cleanUpMesh(QuadMesh& mesh, double zeroArea) {
+CleanupResult cleanUpMesh(QuadMesh& mesh, double zeroArea, double shortEdge) {
   if (!std::isfinite(zeroArea) || zeroArea < 0.0)
     throw std::invalid_argument("cleanUpMesh: zero-area threshold " + std::to_string(zeroArea) +
+                                " is not finite and >= 0");
+  if (!std::isfinite(shortEdge) || shortEdge < 0.0)
+    throw std::invalid_argument("cleanUpMesh: short-edge threshold " + std::to_string(shortEdge) +
                                 " is not finite and >= 0");
   CleanupResult result;
   result.zeroAreaFaces += dropRepeatedCorners(mesh);
   opt::checkMesh(mesh);
   for (;;) {
-    const std::size_t zero = collapseZeroAreaFaces(mesh, zeroArea);
-    result.zeroAreaFaces += zero;
+    const std::size_t zero = collapseSmallFaces(mesh, zeroArea, shortEdge, result);
     const std::size_t doublets = removeDoublets(mesh);
     result.valence2Points += doublets;
     const std::size_t folded = collapseFoldedCurveQuads(mesh);

@@ -27,6 +27,12 @@ void checkOptimizeSettings(const OptimizeSettings& s) {
   if (!(s.relaxDamping > 0.0 && s.relaxDamping <= 1.0))
     throw SettingError("optimize: relaxDamping " + std::to_string(s.relaxDamping) +
                        " is outside (0, 1]");
+  if (!std::isfinite(s.shortEdgeFactor) || s.shortEdgeFactor < 0.0 || s.shortEdgeFactor > 1.0)
+    throw SettingError("optimize: shortEdgeFactor " + std::to_string(s.shortEdgeFactor) +
+                       " is outside 0 .. 1");
+  if (!(s.warpingMoveFactor > 0.0))
+    throw SettingError("optimize: warpingMoveFactor " + std::to_string(s.warpingMoveFactor) +
+                       " is not > 0");
   if (!std::isfinite(s.zeroAreaFactor) || s.zeroAreaFactor < 0.0)
     throw SettingError("optimize: zeroAreaFactor " + std::to_string(s.zeroAreaFactor) +
                        " is not finite and >= 0");
@@ -43,11 +49,13 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
   QualitySettings quality = settings.quality;
   if (quality.targetSize == 0.0) quality.targetSize = medianEdgeLength(mesh);
   const double zeroArea = settings.zeroAreaFactor * quality.targetSize * quality.targetSize;
+  const double shortEdge = settings.shortEdgeFactor * quality.targetSize;
 
   auto cleanUp = [&] {
     const Clock::time_point t = Clock::now();
-    const CleanupResult r = cleanUpMesh(mesh, zeroArea);
+    const CleanupResult r = cleanUpMesh(mesh, zeroArea, shortEdge);
     s.cleanup.zeroAreaFaces += r.zeroAreaFaces;
+    s.cleanup.shortEdges += r.shortEdges;
     s.cleanup.valence2Points += r.valence2Points;
     s.cleanup.foldedCurveQuads += r.foldedCurveQuads;
     s.cleanupSeconds += secondsSince(t);
@@ -73,7 +81,8 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
     relax();
   }
   const Clock::time_point t = Clock::now();
-  s.warping = removeWarping(mesh, settings.warpingDeg, settings.warpingIterations);
+  s.warping = removeWarping(mesh, settings.warpingDeg, settings.warpingIterations,
+                            settings.warpingMoveFactor * quality.targetSize);
   s.warpingSeconds = secondsSince(t);
   s.totalSeconds = secondsSince(start);
   if (stats) *stats = s;

@@ -41,13 +41,21 @@ QuadPlane quadPlane(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face
   return plane;
 }
 
+/// q pulled back towards `from` to at most `radius` from it.
+Vec3 clamped(const Vec3& from, const Vec3& q, double radius) {
+  const double d = distance(from, q);
+  return d > radius ? from + (q - from) * (radius / d) : q;
+}
+
 }  // namespace
 
-WarpingResult removeWarping(QuadMesh& mesh, double maxWarpingDeg, int maxIterations) {
+WarpingResult removeWarping(QuadMesh& mesh, double maxWarpingDeg, int maxIterations,
+                            double maxMove) {
   if (!std::isfinite(maxWarpingDeg) || maxWarpingDeg < 0.0)
     throw std::invalid_argument("removeWarping: threshold " + std::to_string(maxWarpingDeg) +
                                 " is not a finite angle >= 0");
   if (maxIterations < 0) throw std::invalid_argument("removeWarping: negative iteration count");
+  if (!(maxMove > 0.0)) throw std::invalid_argument("removeWarping: maxMove must be > 0");
   opt::checkMesh(mesh);
   const opt::Topology topology = opt::buildTopology(mesh);
   const std::size_t faceCount = mesh.faces.size();
@@ -74,6 +82,7 @@ WarpingResult removeWarping(QuadMesh& mesh, double maxWarpingDeg, int maxIterati
   std::size_t best = result.warpedAfter;
   int stalled = 0;
   std::vector<Vec3> next(mesh.points.size());
+  const std::vector<Vec3> start = mesh.points;
   while (result.warpedAfter > 0 && result.iterations < maxIterations && stalled < 10) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.points.size()),
                       [&](const tbb::blocked_range<std::size_t>& r) {
@@ -89,9 +98,13 @@ WarpingResult removeWarping(QuadMesh& mesh, double maxWarpingDeg, int maxIterati
                             sum = sum + (p - plane.normal * dot(p - plane.centroid, plane.normal));
                             ++proposals;
                           }
-                          next[v] = proposals ? opt::constrainedPosition(mesh, vi,
-                                                                         sum * (1.0 / proposals))
-                                              : mesh.points[v];
+                          if (proposals == 0) {
+                            next[v] = mesh.points[v];
+                            continue;
+                          }
+                          const Vec3 mean = sum * (1.0 / proposals);
+                          next[v] =
+                              opt::constrainedPosition(mesh, vi, clamped(start[v], mean, maxMove));
                         }
                       });
     mesh.points.swap(next);
