@@ -67,15 +67,7 @@ std::size_t collapseSmallFaces(QuadMesh& mesh, double zeroArea, double shortEdge
     if (!zero && !(length < shortEdge)) continue;
     const CornerIndex u = face[static_cast<std::size_t>(shortest)];
     const CornerIndex v = face[static_cast<std::size_t>((shortest + 1) % n)];
-    if (opt::neighbourhoodLocked(mesh, topology, u, locked) ||
-        opt::neighbourhoodLocked(mesh, topology, v, locked) ||
-        !opt::mergeKeepsManifold(mesh, topology, u, v))
-      continue;
-    const std::optional<opt::Merge> merge = opt::mergeUnderConstraints(mesh, u, v);
-    if (!merge) continue;
-    opt::lockNeighbourhood(mesh, topology, u, locked);
-    opt::lockNeighbourhood(mesh, topology, v, locked);
-    opt::applyMerge(mesh, topology, *merge, deleted);
+    if (!opt::tryMerge(mesh, topology, u, v, locked, deleted)) continue;
     ++(zero ? result.zeroAreaFaces : result.shortEdges);
     ++done;
   }
@@ -158,15 +150,7 @@ std::size_t collapseFoldedCurveQuads(QuadMesh& mesh) {
         continue;
       const CornerIndex into =
           geom::distance(mesh.points[a], pb) <= geom::distance(mesh.points[c], pb) ? a : c;
-      if (opt::neighbourhoodLocked(mesh, topology, b, locked) ||
-          opt::neighbourhoodLocked(mesh, topology, into, locked) ||
-          !opt::mergeKeepsManifold(mesh, topology, b, into))
-        continue;
-      const std::optional<opt::Merge> merge = opt::mergeUnderConstraints(mesh, b, into);
-      if (!merge) continue;
-      opt::lockNeighbourhood(mesh, topology, b, locked);
-      opt::lockNeighbourhood(mesh, topology, into, locked);
-      opt::applyMerge(mesh, topology, *merge, deleted);
+      if (!opt::tryMerge(mesh, topology, b, into, locked, deleted)) continue;
       ++done;
       break;
     }
@@ -195,7 +179,7 @@ CleanupResult cleanUpMesh(QuadMesh& mesh, double zeroArea, double shortEdge) {
     result.foldedCurveQuads += folded;
     if (zero == 0 && doublets == 0 && folded == 0) break;
   }
-  opt::removeUnusedPoints(mesh);
+  eraseUnusedPoints(mesh);
   return result;
 }
 

@@ -42,24 +42,14 @@ std::size_t collapseRhombicQuads(QuadMesh& mesh, const ReferenceSurface* surface
       if (k < 0) continue;
       const CornerIndex u = face[static_cast<std::size_t>(k)];
       const CornerIndex v = face[static_cast<std::size_t>(k + 2)];
-      if (opt::neighbourhoodLocked(mesh, topology, u, locked) ||
-          opt::neighbourhoodLocked(mesh, topology, v, locked) ||
-          !opt::mergeKeepsManifold(mesh, topology, u, v))
-        continue;
-      std::optional<opt::Merge> merge = opt::mergeUnderConstraints(mesh, u, v);
-      if (!merge) continue;
-      if (surface && !surface->empty())
-        merge->position = surface->closestPoint(merge->position).point;
-      opt::lockNeighbourhood(mesh, topology, u, locked);
-      opt::lockNeighbourhood(mesh, topology, v, locked);
-      opt::applyMerge(mesh, topology, *merge, deleted);
+      if (!opt::tryMerge(mesh, topology, u, v, locked, deleted, surface)) continue;
       ++round;
     }
     if (round == 0) break;
     collapsed += round;
     opt::eraseFaces(mesh, deleted);
   }
-  opt::removeUnusedPoints(mesh);
+  eraseUnusedPoints(mesh);
   return collapsed;
 }
 

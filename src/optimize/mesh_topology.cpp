@@ -205,6 +205,22 @@ void applyMerge(QuadMesh& mesh, const Topology& t, const Merge& merge,
   }
 }
 
+bool tryMerge(QuadMesh& mesh, const Topology& topology, CornerIndex u, CornerIndex v,
+              std::vector<std::uint8_t>& locked, std::vector<std::uint8_t>& deleted,
+              const ReferenceSurface* surface) {
+  if (neighbourhoodLocked(mesh, topology, u, locked) ||
+      neighbourhoodLocked(mesh, topology, v, locked) || !mergeKeepsManifold(mesh, topology, u, v))
+    return false;
+  std::optional<Merge> merge = mergeUnderConstraints(mesh, u, v);
+  if (!merge) return false;
+  if (surface && !surface->empty() && roleOf(mesh, merge->keep) == PointRole::Free)
+    merge->position = surface->closestPoint(merge->position).point;
+  lockNeighbourhood(mesh, topology, u, locked);
+  lockNeighbourhood(mesh, topology, v, locked);
+  applyMerge(mesh, topology, *merge, deleted);
+  return true;
+}
+
 void lockNeighbourhood(const QuadMesh& mesh, const Topology& t, CornerIndex v,
                        std::vector<std::uint8_t>& locked) {
   for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f) {
@@ -230,25 +246,6 @@ void eraseFaces(QuadMesh& mesh, const std::vector<std::uint8_t>& deleted) {
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
     if (!deleted[f]) mesh.faces[out++] = mesh.faces[f];
   mesh.faces.resize(out);
-}
-
-void removeUnusedPoints(QuadMesh& mesh) {
-  std::vector<CornerIndex> newIndex(mesh.points.size(), kNoCorner);
-  for (const auto& face : mesh.faces)
-    for (int k = 0; k < cornerCount(face); ++k) newIndex[face[static_cast<std::size_t>(k)]] = 0;
-  CornerIndex next = 0;
-  for (std::size_t v = 0; v < mesh.points.size(); ++v) {
-    if (newIndex[v] == kNoCorner) continue;
-    newIndex[v] = next;
-    mesh.points[next] = mesh.points[v];
-    if (!mesh.constraints.empty()) mesh.constraints[next] = mesh.constraints[v];
-    ++next;
-  }
-  mesh.points.resize(next);
-  if (!mesh.constraints.empty()) mesh.constraints.resize(next);
-  for (auto& face : mesh.faces)
-    for (int k = 0; k < cornerCount(face); ++k)
-      face[static_cast<std::size_t>(k)] = newIndex[face[static_cast<std::size_t>(k)]];
 }
 
 double faceArea(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face) {

@@ -9,6 +9,7 @@
 
 #include "geometry/vec3.h"
 #include "voxremesh/quad_mesh.h"
+#include "voxremesh/reference_surface.h"
 
 namespace voxremesh::opt {
 
@@ -75,6 +76,14 @@ bool mergeKeepsManifold(const QuadMesh& mesh, const Topology& topology, CornerIn
 void applyMerge(QuadMesh& mesh, const Topology& topology, const Merge& merge,
                 std::vector<std::uint8_t>& deleted);
 
+/// Merges u and v in one round of topology changes when neither neighbourhood is locked,
+/// mergeKeepsManifold holds and mergeUnderConstraints allows it; a merged Free point is projected
+/// on `surface` when that is given. Then locks both neighbourhoods and applies the merge.
+/// Returns whether it merged.
+bool tryMerge(QuadMesh& mesh, const Topology& topology, CornerIndex u, CornerIndex v,
+              std::vector<std::uint8_t>& locked, std::vector<std::uint8_t>& deleted,
+              const ReferenceSurface* surface = nullptr);
+
 /// Marks the points of every face around v (its closed neighbourhood) in `locked`.
 void lockNeighbourhood(const QuadMesh& mesh, const Topology& topology, CornerIndex v,
                        std::vector<std::uint8_t>& locked);
@@ -85,9 +94,6 @@ bool neighbourhoodLocked(const QuadMesh& mesh, const Topology& topology, CornerI
 
 /// Erases the faces flagged in `deleted` (keeping the order of the others).
 void eraseFaces(QuadMesh& mesh, const std::vector<std::uint8_t>& deleted);
-
-/// Removes points no face uses, keeping the order of the others, with their constraints.
-void removeUnusedPoints(QuadMesh& mesh);
 
 /// The area of a face: |d1 x d2| / 2 for a quad (d the diagonals), |e0 x e1| / 2 for a triangle.
 double faceArea(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face);

@@ -16,66 +16,39 @@ namespace {
 
 /// What a criterion measures, which elements it applies to, and its limit.
 struct CriterionRule {
-  double (*value)(const ElementQuality&);
+  const char* name;
+  double ElementQuality::*value;
   bool quads;      ///< applies to quads
   bool triangles;  ///< applies to triangles
   bool isMaximum;
+  double QualitySettings::*limit;  ///< for MinLength: the factor of targetSize
 };
 
-CriterionRule rule(Criterion c) {
-  switch (c) {
-    case Criterion::Warping:
-      return {[](const ElementQuality& q) { return q.warpingDeg; }, true, false, true};
-    case Criterion::AspectRatio:
-      return {[](const ElementQuality& q) { return q.aspectRatio; }, true, true, true};
-    case Criterion::QuadMinAngle:
-      return {[](const ElementQuality& q) { return q.minAngleDeg; }, true, false, false};
-    case Criterion::QuadMaxAngle:
-      return {[](const ElementQuality& q) { return q.maxAngleDeg; }, true, false, true};
-    case Criterion::TriaMinAngle:
-      return {[](const ElementQuality& q) { return q.minAngleDeg; }, false, true, false};
-    case Criterion::TriaMaxAngle:
-      return {[](const ElementQuality& q) { return q.maxAngleDeg; }, false, true, true};
-    case Criterion::Skew:
-      return {[](const ElementQuality& q) { return q.skewDeg; }, true, true, true};
-    case Criterion::JacobianRatio:
-      return {[](const ElementQuality& q) { return q.jacobianRatio; }, true, false, false};
-    case Criterion::ScaledJacobian:
-      return {[](const ElementQuality& q) { return q.scaledJacobian; }, true, true, false};
-    case Criterion::Taper:
-      return {[](const ElementQuality& q) { return q.taper; }, true, false, true};
-    case Criterion::MinLength:
-      break;
-  }
-  return {[](const ElementQuality& q) { return q.minLength; }, true, true, false};
-}
+/// The rules, in the order of Criterion.
+const CriterionRule kRules[kCriterionCount] = {
+    {"warping", &ElementQuality::warpingDeg, true, false, true, &QualitySettings::maxWarpingDeg},
+    {"aspect", &ElementQuality::aspectRatio, true, true, true, &QualitySettings::maxAspectRatio},
+    {"quad_min_angle", &ElementQuality::minAngleDeg, true, false, false,
+     &QualitySettings::minQuadAngleDeg},
+    {"quad_max_angle", &ElementQuality::maxAngleDeg, true, false, true,
+     &QualitySettings::maxQuadAngleDeg},
+    {"tria_min_angle", &ElementQuality::minAngleDeg, false, true, false,
+     &QualitySettings::minTriaAngleDeg},
+    {"tria_max_angle", &ElementQuality::maxAngleDeg, false, true, true,
+     &QualitySettings::maxTriaAngleDeg},
+    {"skew", &ElementQuality::skewDeg, true, true, true, &QualitySettings::maxSkewDeg},
+    {"jacobian_ratio", &ElementQuality::jacobianRatio, true, false, false,
+     &QualitySettings::minJacobianRatio},
+    {"scaled_jacobian", &ElementQuality::scaledJacobian, true, true, false,
+     &QualitySettings::minScaledJacobian},
+    {"taper", &ElementQuality::taper, true, false, true, &QualitySettings::maxTaper},
+    {"min_length", &ElementQuality::minLength, true, true, false,
+     &QualitySettings::minLengthFactor},
+};
 
 double limitOf(Criterion c, const QualitySettings& s) {
-  switch (c) {
-    case Criterion::Warping:
-      return s.maxWarpingDeg;
-    case Criterion::AspectRatio:
-      return s.maxAspectRatio;
-    case Criterion::QuadMinAngle:
-      return s.minQuadAngleDeg;
-    case Criterion::QuadMaxAngle:
-      return s.maxQuadAngleDeg;
-    case Criterion::TriaMinAngle:
-      return s.minTriaAngleDeg;
-    case Criterion::TriaMaxAngle:
-      return s.maxTriaAngleDeg;
-    case Criterion::Skew:
-      return s.maxSkewDeg;
-    case Criterion::JacobianRatio:
-      return s.minJacobianRatio;
-    case Criterion::ScaledJacobian:
-      return s.minScaledJacobian;
-    case Criterion::Taper:
-      return s.maxTaper;
-    case Criterion::MinLength:
-      break;
-  }
-  return s.minLengthFactor * s.targetSize;
+  const double limit = s.*(kRules[static_cast<int>(c)].limit);
+  return c == Criterion::MinLength ? limit * s.targetSize : limit;
 }
 
 /// The value fails the limit (NaN always fails).
@@ -87,31 +60,7 @@ bool fails(double value, double limit, bool isMaximum) {
 }  // namespace
 
 const char* criterionName(Criterion c) {
-  switch (c) {
-    case Criterion::Warping:
-      return "warping";
-    case Criterion::AspectRatio:
-      return "aspect";
-    case Criterion::QuadMinAngle:
-      return "quad_min_angle";
-    case Criterion::QuadMaxAngle:
-      return "quad_max_angle";
-    case Criterion::TriaMinAngle:
-      return "tria_min_angle";
-    case Criterion::TriaMaxAngle:
-      return "tria_max_angle";
-    case Criterion::Skew:
-      return "skew";
-    case Criterion::JacobianRatio:
-      return "jacobian_ratio";
-    case Criterion::ScaledJacobian:
-      return "scaled_jacobian";
-    case Criterion::Taper:
-      return "taper";
-    case Criterion::MinLength:
-      break;
-  }
-  return "min_length";
+  return kRules[static_cast<int>(c)].name;
 }
 
 std::vector<ElementQuality> elementQualities(const QuadMesh& mesh) {
@@ -158,7 +107,7 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
   report.elementFailures.assign(report.elements, 0);
   for (int c = 0; c < kCriterionCount; ++c) {
     const auto criterion = static_cast<Criterion>(c);
-    const CriterionRule r = rule(criterion);
+    const CriterionRule& r = kRules[c];
     CriterionSummary summary;
     summary.criterion = criterion;
     summary.limit = limitOf(criterion, s);
@@ -167,7 +116,7 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
     for (std::size_t f = 0; f < report.elements; ++f) {
       const bool quad = cornerCount(mesh.faces[f]) == 4;
       if (quad ? !r.quads : !r.triangles) continue;
-      const double value = r.value(report.elementValues[f]);
+      const double value = report.elementValues[f].*(r.value);
       ++summary.applies;
       if (first || (r.isMaximum ? value > summary.worst : value < summary.worst) ||
           std::isnan(value)) {
