@@ -381,6 +381,7 @@ TEST(RelaxMesh, EqualisesAJitteredCylinderAndStaysOnIt) {
   }
   EXPECT_THROW(voxremesh::relaxMesh(mesh, ReferenceSurface{}, 1, 0.5), std::invalid_argument);
   EXPECT_THROW(voxremesh::relaxMesh(mesh, fine, 1, 0.0), std::invalid_argument);
+  EXPECT_THROW(voxremesh::relaxMesh(mesh, fine, 1, 0.9), std::invalid_argument);
 }
 
 TEST(RelaxMesh, UnconstrainedBoundaryPointsSlideAlongTheBoundary) {

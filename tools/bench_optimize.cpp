@@ -5,7 +5,9 @@
 // timing each step (best of --repeat runs of the optimisation, each on a fresh copy of the
 // extracted mesh). Prints the times, the quality of the extracted and the optimised mesh against
 // the default criteria (failing share, triangle share, two-sided distance to the input shells),
-// and the number of boundary loops (outer contour and holes) of the input and of both meshes.
+// and the number of boundary loops (outer contour and holes) of the input and of both meshes. The
+// failing share is given for all criteria of quality.h and for the ones the shared data README
+// measures the input decks with (warping, angles, aspect, scaled Jacobian).
 // Options: --size H, --threads N (default: all), --repeat N (default 3), -o OUT.k (write the
 // optimised mesh).
 //
@@ -73,25 +75,34 @@ std::size_t boundaryLoops(const QuadMesh& mesh) {
   return loops;
 }
 
+/// The share of elements failing one of the criteria the shared data README measures the input
+/// decks with (warping, angles, aspect, scaled Jacobian): 5.1 % for the bracket itself.
+double readmeShare(const QualityReport& r) {
+  std::uint32_t mask = 0;
+  for (const Criterion c : {Criterion::Warping, Criterion::AspectRatio, Criterion::QuadMinAngle,
+                            Criterion::QuadMaxAngle, Criterion::TriaMinAngle,
+                            Criterion::TriaMaxAngle, Criterion::ScaledJacobian})
+    mask |= 1u << static_cast<int>(c);
+  std::size_t failing = 0;
+  for (const std::uint32_t failures : r.elementFailures) failing += (failures & mask) ? 1 : 0;
+  return r.elements ? double(failing) / double(r.elements) : 0.0;
+}
+
 void printQuality(const char* name, const QuadMesh& mesh, const QuadMesh& original,
                   double targetSize) {
   QualitySettings settings;
   settings.targetSize = targetSize;
   const QualityReport r = assessQuality(mesh, settings, &original);
   std::printf(
-      "%-10s %7zu elements, %5.2f %% trias, %5.2f %% failing any (warping %zu, angles %zu, "
-      "jacobian %zu, taper %zu, length %zu), distance max %.3f mean %.3f (limit %.3f), "
-      "%zu boundary loops\n",
-      name, r.elements, 100.0 * r.triangleShare, 100.0 * r.failingAnyShare,
-      r.criteria[int(Criterion::Warping)].failing,
-      r.criteria[int(Criterion::QuadMinAngle)].failing +
-          r.criteria[int(Criterion::QuadMaxAngle)].failing +
-          r.criteria[int(Criterion::TriaMinAngle)].failing +
-          r.criteria[int(Criterion::TriaMaxAngle)].failing,
-      r.criteria[int(Criterion::JacobianRatio)].failing, r.criteria[int(Criterion::Taper)].failing,
-      r.criteria[int(Criterion::MinLength)].failing, r.distance->max(),
-      std::max(r.distance->meanToOriginal, r.distance->meanFromOriginal), r.distanceLimit,
-      boundaryLoops(mesh));
+      "%-10s %5zu elements, %5.2f %% trias, %5.2f %% failing any criterion, %5.2f %% any "
+      "of the README's, distance max %.3f mean %.3f (limit %.3f), %zu boundary loops\n",
+      name, r.elements, 100.0 * r.triangleShare, 100.0 * r.failingAnyShare, 100.0 * readmeShare(r),
+      r.distance->max(), std::max(r.distance->meanToOriginal, r.distance->meanFromOriginal),
+      r.distanceLimit, boundaryLoops(mesh));
+  std::printf("          failing:");
+  for (const CriterionSummary& c : r.criteria)
+    if (c.failing) std::printf(" %s %zu", criterionName(c.criterion), c.failing);
+  std::printf("\n");
 }
 
 int run(int argc, char** argv) {

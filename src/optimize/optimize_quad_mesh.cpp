@@ -24,9 +24,9 @@ void checkOptimizeSettings(const OptimizeSettings& s) {
                        " is outside 0 .. 180");
   if (s.warpingIterations < 0 || s.relaxIterations < 0)
     throw SettingError("optimize: iteration counts must be >= 0");
-  if (!(s.relaxDamping > 0.0 && s.relaxDamping <= 1.0))
+  if (!(s.relaxDamping > 0.0 && s.relaxDamping <= 0.7))
     throw SettingError("optimize: relaxDamping " + std::to_string(s.relaxDamping) +
-                       " is outside (0, 1]");
+                       " is outside (0, 0.7]");
   if (!std::isfinite(s.shortEdgeFactor) || s.shortEdgeFactor < 0.0 || s.shortEdgeFactor > 1.0)
     throw SettingError("optimize: shortEdgeFactor " + std::to_string(s.shortEdgeFactor) +
                        " is outside 0 .. 1");

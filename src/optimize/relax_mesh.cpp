@@ -21,6 +21,9 @@ namespace {
 /// SheetSettings::cornerAngleDeg makes such points Corners where the sheets are built).
 constexpr double kBoundaryCornerDeg = 30.0;
 
+/// The largest stable damping (see relaxMesh).
+constexpr double kMaxDamping = 0.7;
+
 /// The neighbours of v along boundary edges.
 std::vector<CornerIndex> boundaryNeighbours(const opt::Topology& t, CornerIndex v) {
   std::vector<CornerIndex> result;
@@ -122,9 +125,9 @@ Vec3 relaxed(const QuadMesh& mesh, const opt::Topology& t, const ReferenceSurfac
 void relaxMesh(QuadMesh& mesh, const ReferenceSurface& original, int iterations, double damping) {
   if (original.empty()) throw std::invalid_argument("relaxMesh: the original surface is empty");
   if (iterations < 0) throw std::invalid_argument("relaxMesh: negative iteration count");
-  if (!(damping > 0.0 && damping <= 1.0))
+  if (!(damping > 0.0 && damping <= kMaxDamping))
     throw std::invalid_argument("relaxMesh: damping " + std::to_string(damping) +
-                                " is not in (0, 1]");
+                                " is not in (0, 0.7]");
   opt::checkMesh(mesh);
   const opt::Topology topology = opt::buildTopology(mesh);
   const std::size_t count = mesh.points.size();
