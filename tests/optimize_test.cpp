@@ -296,6 +296,18 @@ TEST(CleanUpMesh, CollapsesShortEdgesOnlyWhenAsked) {
   EXPECT_THROW(voxremesh::cleanUpMesh(mesh, 0.0, -1.0), std::invalid_argument);
 }
 
+TEST(CleanUpMesh, RemovesFoldsAndRepeatedFaces) {
+  const int n = 3;
+  QuadMesh mesh = grid(n);
+  const auto f = mesh.faces[4];
+  mesh.faces.push_back(f);                         // the same face again, same way round
+  mesh.faces.push_back({f[0], f[3], f[2], f[1]});  // and back to back
+  const voxremesh::CleanupResult r = voxremesh::cleanUpMesh(mesh, 1e-9);
+  EXPECT_EQ(r.duplicateFaces, 3u);  // the fold pair and one of the same-way copies
+  EXPECT_EQ(mesh.faces.size(), std::size_t(n * n - 1));
+  for (const auto& face : mesh.faces) EXPECT_NE(face, f);
+}
+
 TEST(MergeTrianglePairs, JoinsASplitQuadBack) {
   const int n = 3;
   QuadMesh mesh = grid(n);

@@ -80,22 +80,24 @@ void relaxMesh(QuadMesh& mesh, const ReferenceSurface& original, int iterations 
 struct CleanupResult {
   std::size_t zeroAreaFaces = 0;   ///< faces removed or reduced by collapsing their shortest edge
   std::size_t shortEdges = 0;      ///< edges shorter than the short-edge threshold collapsed
+  std::size_t duplicateFaces = 0;  ///< faces removed for using the same points as another
   std::size_t valence2Points = 0;  ///< Free interior points in exactly two faces (doublets) removed
   std::size_t foldedCurveQuads = 0;  ///< quads folded along a curve, reduced to triangles
 };
 
-/// Clean-up: (1) zero-area faces and short edges: a face with area (quality.h's element area) at
-/// most `zeroArea`, or whose shortest edge is shorter than `shortEdge`, gets its shortest edge
-/// collapsed (a quad becomes a triangle, a triangle vanishes)
-/// where the merge keeps the mesh manifold and the constraints allow it (see the top of the file);
-/// (2) doublets: a Free point that is not on the boundary and lies in exactly two faces is removed
-/// and the two faces become one (two quads -> a quad, a quad and a triangle -> a triangle, two
-/// triangles -> nothing). Constrained points in doublets are kept; (3) quads folded along a curve:
-/// three consecutive corners a, b, c on one curve (b a Feature/Boundary/Junction point, a and c
-/// on its curve or Corners) with an interior angle above 150 degrees at b: b merges into the
-/// nearer of a and c (the quad becomes a triangle; the constraint rules above apply). Rounds
-/// repeat until nothing changes. Unused points are removed at the end (indices of points change;
-/// order is kept).
+/// Clean-up: (0) duplicate faces: of faces using the same points, a pair running opposite ways
+/// (two faces back to back, a fold) is removed, of faces running the same way all but the first;
+/// (1) zero-area faces and short edges: a face with area (quality.h's element area) at most
+/// `zeroArea`, or whose shortest edge is shorter than `shortEdge`, gets its shortest edge
+/// collapsed (a quad becomes a triangle, a triangle vanishes) where the merge keeps the mesh
+/// manifold and the constraints allow it (see the top of the file); (2) doublets: a Free point
+/// that is not on the boundary and lies in exactly two faces is removed and the two faces become
+/// one (two quads -> a quad, a quad and a triangle -> a triangle, two triangles -> nothing).
+/// Constrained points in doublets are kept; (3) quads folded along a curve: three consecutive
+/// corners a, b, c on one curve (b a Feature/Boundary/Junction point, a and c on its curve or
+/// Corners) with an interior angle above 150 degrees at b: b merges into the nearer of a and c
+/// (the quad becomes a triangle; the constraint rules above apply). Rounds repeat until nothing
+/// changes. Unused points are removed at the end (indices of points change; order is kept).
 /// @param zeroArea   area threshold in model units squared, finite and >= 0
 /// @param shortEdge  edge length threshold in model units, finite and >= 0 (0: none)
 /// Throws std::invalid_argument for a bad threshold or mesh.

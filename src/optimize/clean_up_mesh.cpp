@@ -1,4 +1,5 @@
 // cleanUpMesh: zero-area faces and doublets (Free interior points in exactly two faces).
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -43,6 +44,45 @@ std::size_t dropRepeatedCorners(QuadMesh& mesh) {
   }
   opt::eraseFaces(mesh, deleted);
   return changed;
+}
+
+/// Removes faces that use the same points as another face: both of a pair that runs opposite ways
+/// (a fold, two faces back to back), all but the first of faces that run the same way. Returns
+/// the number of faces removed.
+std::size_t removeDuplicateFaces(QuadMesh& mesh) {
+  // (sorted corners, face) for every face, sorted: equal point sets become neighbours.
+  std::vector<std::pair<std::array<CornerIndex, 4>, std::uint32_t>> keys;
+  keys.reserve(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    std::array<CornerIndex, 4> key = mesh.faces[f];
+    std::sort(key.begin(), key.end());  // kNoCorner sorts last
+    keys.emplace_back(key, static_cast<std::uint32_t>(f));
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::uint8_t> deleted(mesh.faces.size(), 0);
+  std::size_t removed = 0;
+  for (std::size_t i = 0; i < keys.size();) {
+    std::size_t j = i + 1;
+    while (j < keys.size() && keys[j].first == keys[i].first) ++j;
+    for (std::size_t k = i + 1; k < j; ++k) {
+      const auto& first = mesh.faces[keys[i].second];
+      const auto& other = mesh.faces[keys[k].second];
+      // Same way round: the corner after first[0] is the same in both.
+      const int n = cornerCount(first);
+      int at = 0;
+      while (other[static_cast<std::size_t>(at)] != first[0]) ++at;
+      const bool sameWay = other[static_cast<std::size_t>((at + 1) % n)] == first[1];
+      if (!sameWay && !deleted[keys[i].second]) {
+        deleted[keys[i].second] = 1;
+        ++removed;
+      }
+      deleted[keys[k].second] = 1;
+      ++removed;
+    }
+    i = j;
+  }
+  opt::eraseFaces(mesh, deleted);
+  return removed;
 }
 
 /// One round of shortest-edge collapses of faces with area at most zeroArea or an edge shorter
@@ -172,12 +212,14 @@ CleanupResult cleanUpMesh(QuadMesh& mesh, double zeroArea, double shortEdge) {
   result.zeroAreaFaces += dropRepeatedCorners(mesh);
   opt::checkMesh(mesh);
   for (;;) {
+    const std::size_t duplicates = removeDuplicateFaces(mesh);
+    result.duplicateFaces += duplicates;
     const std::size_t zero = collapseSmallFaces(mesh, zeroArea, shortEdge, result);
     const std::size_t doublets = removeDoublets(mesh);
     result.valence2Points += doublets;
     const std::size_t folded = collapseFoldedCurveQuads(mesh);
     result.foldedCurveQuads += folded;
-    if (zero == 0 && doublets == 0 && folded == 0) break;
+    if (duplicates == 0 && zero == 0 && doublets == 0 && folded == 0) break;
   }
   eraseUnusedPoints(mesh);
   return result;

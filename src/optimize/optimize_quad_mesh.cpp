@@ -56,6 +56,7 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
     const CleanupResult r = cleanUpMesh(mesh, zeroArea, shortEdge);
     s.cleanup.zeroAreaFaces += r.zeroAreaFaces;
     s.cleanup.shortEdges += r.shortEdges;
+    s.cleanup.duplicateFaces += r.duplicateFaces;
     s.cleanup.valence2Points += r.valence2Points;
     s.cleanup.foldedCurveQuads += r.foldedCurveQuads;
     s.cleanupSeconds += secondsSince(t);
