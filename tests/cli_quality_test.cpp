@@ -93,6 +93,13 @@ TEST(CliQuality, TableAndVtuWithDistance) {
 
 TEST(CliQuality, LimitOverridesChangeTheCounts) {
   VOXREMESH_REQUIRE_SHARED_DECK(deck, "bracket.k");
+  // At the Gauss points 73 of the bracket's quads have a Jacobian ratio under 0.6, at the corners
+  // 416.
+  const CliRun gauss =
+      runCliSplit("quality " + quoted(deck) + " --json --jacobian-at-gauss-points");
+  ASSERT_EQ(gauss.exitCode, 0) << gauss.err;
+  EXPECT_EQ(criterion(parseJson(gauss.out), "jacobian_ratio")["failing"].number, 73.0);
+  EXPECT_EQ(parseJson(gauss.out)["jacobian_at"].text, "gauss_points");
   const CliRun loose = runCliSplit("quality " + quoted(deck) + " --json --warping 90");
   ASSERT_EQ(loose.exitCode, 0) << loose.err;
   EXPECT_EQ(criterion(parseJson(loose.out), "warping")["failing"].number, 0.0);

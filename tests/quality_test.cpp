@@ -33,6 +33,7 @@ TEST(ElementQuality, UnitSquareIsPerfect) {
   EXPECT_NEAR(q.maxAngleDeg, 90.0, 1e-12);
   EXPECT_NEAR(q.skewDeg, 0.0, 1e-12);
   EXPECT_DOUBLE_EQ(q.jacobianRatio, 1.0);
+  EXPECT_DOUBLE_EQ(q.jacobianRatioGauss, 1.0);
   EXPECT_DOUBLE_EQ(q.scaledJacobian, 1.0);
   EXPECT_NEAR(q.taper, 0.0, 1e-15);
   EXPECT_DOUBLE_EQ(q.minLength, 1.0);
@@ -70,6 +71,9 @@ TEST(ElementQuality, Trapezoid) {
   EXPECT_NEAR(q.maxAngleDeg, 135.0, 1e-10);
   EXPECT_NEAR(q.taper, 1.0 / 3.0, 1e-12);
   EXPECT_NEAR(q.jacobianRatio, 0.5, 1e-12);
+  // det J = (3 - eta) / 4: 1 and 1/2 at the corners, (3 -+ 1/sqrt 3) / 4 at the Gauss points.
+  const double g = 1.0 / std::sqrt(3.0);
+  EXPECT_NEAR(q.jacobianRatioGauss, (3.0 - g) / (3.0 + g), 1e-12);
   EXPECT_NEAR(q.scaledJacobian, std::sqrt(0.5), 1e-12);
   EXPECT_NEAR(q.skewDeg, 0.0, 1e-10);
   EXPECT_NEAR(q.minLength, 0.75, 1e-12);
@@ -169,6 +173,24 @@ TEST(QualityReport, MinLengthScalesWithTheTargetSize) {
   const voxremesh::QualityReport report = voxremesh::assessQuality(grid(2, 2), settings);
   EXPECT_EQ(report.criteria[static_cast<int>(Criterion::MinLength)].failing, 4u);
   EXPECT_DOUBLE_EQ(report.criteria[static_cast<int>(Criterion::MinLength)].limit, 1.25);
+}
+
+TEST(ElementFailures, JacobianAtCornersOrGaussPoints) {
+  // The trapezoid: Jacobian ratio 0.5 at the corners, 0.677 at the Gauss points.
+  const ElementQuality q = quad({{{0, 0, 0}, {4, 0, 0}, {3, 1, 0}, {1, 1, 0}}});
+  voxremesh::QualitySettings s;
+  s.targetSize = 1.0;
+  const std::uint32_t jacobian = 1u << static_cast<int>(Criterion::JacobianRatio);
+  EXPECT_EQ(voxremesh::elementFailures(q, 4, s) & jacobian, jacobian);
+  s.jacobianAtGaussPoints = true;
+  EXPECT_EQ(voxremesh::elementFailures(q, 4, s) & jacobian, 0u);
+  // Its 45-degree corners pass a minimum of 44 and fail one of 50.
+  const std::uint32_t minAngle = 1u << static_cast<int>(Criterion::QuadMinAngle);
+  s.minQuadAngleDeg = 44.0;
+  EXPECT_EQ(voxremesh::elementFailures(q, 4, s) & minAngle, 0u);
+  s.minQuadAngleDeg = 50.0;
+  EXPECT_EQ(voxremesh::elementFailures(q, 4, s) & minAngle, minAngle);
+  EXPECT_THROW(voxremesh::elementFailures(q, 5, s), std::invalid_argument);
 }
 
 TEST(QualitySettings, AbsurdValuesAreRefused) {

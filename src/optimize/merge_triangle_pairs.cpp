@@ -31,15 +31,6 @@ bool pairQuad(const std::array<CornerIndex, 4>& t1, const std::array<CornerIndex
   return false;
 }
 
-/// The quad passes every criterion of the settings.
-bool passes(const ElementQuality& q, const QualitySettings& s) {
-  return q.warpingDeg <= s.maxWarpingDeg && q.aspectRatio <= s.maxAspectRatio &&
-         q.minAngleDeg >= s.minQuadAngleDeg && q.maxAngleDeg <= s.maxQuadAngleDeg &&
-         q.skewDeg <= s.maxSkewDeg && q.jacobianRatio >= s.minJacobianRatio &&
-         q.scaledJacobian >= s.minScaledJacobian && q.taper <= s.maxTaper &&
-         q.minLength >= s.minLengthFactor * s.targetSize;
-}
-
 }  // namespace
 
 std::size_t mergeTrianglePairs(QuadMesh& mesh, const QualitySettings& settings) {
@@ -70,7 +61,7 @@ std::size_t mergeTrianglePairs(QuadMesh& mesh, const QualitySettings& settings) 
       std::array<std::array<double, 3>, 4> p;
       for (std::size_t c = 0; c < 4; ++c) p[c] = mesh.points[quad[c]];
       const ElementQuality q = elementQuality(p, 4);
-      if (!passes(q, settings)) continue;
+      if (elementFailures(q, 4, settings) != 0) continue;
       const double score = std::max(std::abs(q.minAngleDeg - 90.0), std::abs(q.maxAngleDeg - 90.0));
       pairs.emplace_back(score, f1, f2, quad);
     }

@@ -111,6 +111,18 @@ ElementQuality quadQuality(const std::array<Vec3, 4>& p) {
     minScaled = std::min(minScaled, lengths > 0.0 ? j / lengths : 0.0);
   }
   q.jacobianRatio = maxJ > 0.0 ? minJ / maxJ : -1.0;
+  // The same at the 2 x 2 Gauss points of the bilinear map.
+  const double g = 1.0 / std::sqrt(3.0);
+  double minG = kInfinity, maxG = -kInfinity;
+  for (const double xi : {-g, g})
+    for (const double eta : {-g, g}) {
+      const Vec3 dXi = ((p[1] - p[0]) * (1.0 - eta) + (p[2] - p[3]) * (1.0 + eta)) * 0.25;
+      const Vec3 dEta = ((p[3] - p[0]) * (1.0 - xi) + (p[2] - p[1]) * (1.0 + xi)) * 0.25;
+      const double j = dot(cross(dXi, dEta), n);
+      minG = std::min(minG, j);
+      maxG = std::max(maxG, j);
+    }
+  q.jacobianRatioGauss = maxG > 0.0 ? minG / maxG : -1.0;
   q.scaledJacobian = minScaled;
 
   // Taper: signed corner-triangle areas along the element normal against half the quad area.

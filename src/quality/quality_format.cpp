@@ -45,8 +45,11 @@ void appendRow(std::string& out, const std::string& name, const std::string& lim
 std::string formatQualityTable(const QualityReport& report) {
   std::string out;
   char line[256];
-  std::snprintf(line, sizeof line, "elements %zu (quads %zu, trias %zu), target size %.4g\n\n",
-                report.elements, report.quads, report.triangles, report.settings.targetSize);
+  std::snprintf(
+      line, sizeof line,
+      "elements %zu (quads %zu, trias %zu), target size %.4g, Jacobian ratio at the %s\n\n",
+      report.elements, report.quads, report.triangles, report.settings.targetSize,
+      report.settings.jacobianAtGaussPoints ? "Gauss points" : "corners");
   out += line;
   appendRow(out, "metric", "limit", "worst", "failing", "share");
   out += "  " + std::string(62, '-') + "\n";
@@ -79,6 +82,8 @@ std::string qualityReportJson(const QualityReport& report) {
   out += ",\"trias\":" + std::to_string(report.triangles);
   out += ",\"target_size\":";
   appendJsonNumber(out, report.settings.targetSize);
+  out += report.settings.jacobianAtGaussPoints ? ",\"jacobian_at\":\"gauss_points\""
+                                               : ",\"jacobian_at\":\"corners\"";
   out += ",\"criteria\":[";
   for (std::size_t i = 0; i < report.criteria.size(); ++i) {
     const CriterionSummary& c = report.criteria[i];

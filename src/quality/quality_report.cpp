@@ -46,6 +46,13 @@ const CriterionRule kRules[kCriterionCount] = {
      &QualitySettings::minLengthFactor},
 };
 
+/// The metric a criterion looks at under the settings.
+double ElementQuality::*valueOf(Criterion c, const QualitySettings& s) {
+  if (c == Criterion::JacobianRatio && s.jacobianAtGaussPoints)
+    return &ElementQuality::jacobianRatioGauss;
+  return kRules[static_cast<int>(c)].value;
+}
+
 double limitOf(Criterion c, const QualitySettings& s) {
   const double limit = s.*(kRules[static_cast<int>(c)].limit);
   return c == Criterion::MinLength ? limit * s.targetSize : limit;
@@ -86,6 +93,21 @@ std::vector<ElementQuality> elementQualities(const QuadMesh& mesh) {
   return result;
 }
 
+std::uint32_t elementFailures(const ElementQuality& quality, int corners,
+                              const QualitySettings& settings) {
+  if (corners != 3 && corners != 4)
+    throw std::invalid_argument("an element has 3 or 4 corners, not " + std::to_string(corners));
+  std::uint32_t failures = 0;
+  for (int c = 0; c < kCriterionCount; ++c) {
+    const auto criterion = static_cast<Criterion>(c);
+    const CriterionRule& r = kRules[c];
+    if (corners == 4 ? !r.quads : !r.triangles) continue;
+    if (fails(quality.*valueOf(criterion, settings), limitOf(criterion, settings), r.isMaximum))
+      failures |= 1u << c;
+  }
+  return failures;
+}
+
 bool QualityReport::passes() const {
   if (failingAny > 0 || triangleShare > settings.maxTriangleShare) return false;
   return !distance || distance->max() <= distanceLimit;
@@ -116,7 +138,7 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
     for (std::size_t f = 0; f < report.elements; ++f) {
       const bool quad = cornerCount(mesh.faces[f]) == 4;
       if (quad ? !r.quads : !r.triangles) continue;
-      const double value = report.elementValues[f].*(r.value);
+      const double value = report.elementValues[f].*valueOf(criterion, s);
       ++summary.applies;
       if (first || (r.isMaximum ? value > summary.worst : value < summary.worst) ||
           std::isnan(value)) {

@@ -41,7 +41,9 @@ const char* const kHelp =
     "  --warping DEG [15]  --aspect R [5]  --quad-min-angle DEG [45]  --quad-max-angle DEG [135]\n"
     "  --tria-min-angle DEG [30]  --tria-max-angle DEG [120]  --skew DEG [40]\n"
     "  --jacobian R [0.6]  --scaled-jacobian R [0.3]  --taper T [0.6]\n"
-    "  --min-length F [0.5 x size]  --tria-share S [0.05]  --distance F [0.25 x size]\n";
+    "  --min-length F [0.5 x size]  --tria-share S [0.05]  --distance F [0.25 x size]\n"
+    "  --jacobian-at-gauss-points  the Jacobian ratio at the 2 x 2 Gauss points (HyperMesh's\n"
+    "                        default) instead of the corners\n";
 
 /// A limit option and the setting it overrides.
 struct LimitOption {
@@ -104,10 +106,10 @@ double finiteForVtu(double value) {
 /// The cell data of the .vtu: every metric, the failure bit mask and the pass flag.
 std::vector<FieldData> cellFields(const QualityReport& report) {
   std::vector<FieldData> fields = {
-      {"warping_deg", {}},     {"aspect_ratio", {}}, {"min_angle_deg", {}},
-      {"max_angle_deg", {}},   {"skew_deg", {}},     {"jacobian_ratio", {}},
-      {"scaled_jacobian", {}}, {"taper", {}},        {"min_length", {}},
-      {"fail_mask", {}},       {"pass", {}}};
+      {"warping_deg", {}},          {"aspect_ratio", {}},    {"min_angle_deg", {}},
+      {"max_angle_deg", {}},        {"skew_deg", {}},        {"jacobian_ratio", {}},
+      {"jacobian_ratio_gauss", {}}, {"scaled_jacobian", {}}, {"taper", {}},
+      {"min_length", {}},           {"fail_mask", {}},       {"pass", {}}};
   for (std::size_t f = 0; f < report.elements; ++f) {
     const ElementQuality& q = report.elementValues[f];
     const double values[] = {q.warpingDeg,
@@ -116,6 +118,7 @@ std::vector<FieldData> cellFields(const QualityReport& report) {
                              q.maxAngleDeg,
                              q.skewDeg,
                              q.jacobianRatio,
+                             q.jacobianRatioGauss,
                              q.scaledJacobian,
                              q.taper,
                              q.minLength,
@@ -149,6 +152,7 @@ int runQuality(const std::vector<std::string>& args) {
                                        {"--tria-max-angle", true},
                                        {"--skew", true},
                                        {"--jacobian", true},
+                                       {"--jacobian-at-gauss-points", false},
                                        {"--scaled-jacobian", true},
                                        {"--taper", true},
                                        {"--min-length", true},
@@ -160,6 +164,7 @@ int runQuality(const std::vector<std::string>& args) {
   for (const LimitOption& option : kLimits)
     if (const auto text = parsed.value(option.name))
       settings.*(option.field) = parseNumber(option.name, *text);
+  settings.jacobianAtGaussPoints = parsed.has("--jacobian-at-gauss-points");
   checkQualitySettings(settings);
   ReadOptions readOptions;
   if (const auto format = parsed.value("--format")) readOptions.format = formatFromName(*format);
