@@ -489,6 +489,23 @@ TEST(OptimizeQuadMesh, SameBytesForOneAndTwoThreads) {
       0);
 }
 
+TEST(OptimizeQuadMesh, RefusesBadMeshes) {
+  const ReferenceSurface surface(grid(2));
+  QuadMesh mesh = grid(2);
+  mesh.points[4][1] = std::nan("");
+  EXPECT_THROW(voxremesh::optimizeQuadMesh(mesh, surface), std::invalid_argument);
+  EXPECT_THROW(surface.closestPoint(mesh.points[4]), std::invalid_argument);
+  mesh = grid(2);
+  mesh.faces[0][1] = 99;
+  EXPECT_THROW(voxremesh::optimizeQuadMesh(mesh, surface), std::invalid_argument);
+  mesh = grid(2);
+  mesh.constraints[1].curve = 7;  // a boundary point bound to a missing curve
+  EXPECT_THROW(voxremesh::optimizeQuadMesh(mesh, surface), std::invalid_argument);
+  mesh = grid(2);
+  mesh.constraints.pop_back();
+  EXPECT_THROW(voxremesh::optimizeQuadMesh(mesh, surface), std::invalid_argument);
+}
+
 TEST(OptimizeQuadMesh, RefusesBadSettings) {
   QuadMesh mesh = grid(2);
   const ReferenceSurface surface(mesh);

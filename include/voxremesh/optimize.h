@@ -8,10 +8,11 @@
 // point and merge a constrained point only into a point of the same curve or into a Corner.
 // Every step is deterministic: the result does not depend on the number of TBB threads.
 //
-// Preconditions of every step (std::invalid_argument otherwise): every face names existing
-// points; constraints is empty or has one entry per point, and every Feature/Boundary/Junction
-// constraint names an existing curve with points. The mesh is expected to be manifold (each edge
-// in one or two faces, consistently oriented), as extraction produces it; the steps keep it so.
+// Preconditions of every step (std::invalid_argument otherwise): coordinates are finite; every
+// face names existing points; constraints is empty or has one entry per point, and every
+// Feature/Boundary/Junction constraint names an existing curve with points. The mesh is expected to
+// be manifold (each edge in one or two faces, consistently oriented), as extraction produces it;
+// the steps keep it so.
 #pragma once
 
 #include <cstddef>

@@ -40,7 +40,8 @@ class ReferenceSurface {
   /// The number of triangles.
   std::size_t triangleCount() const { return tris_.size(); }
 
-  /// The closest point of the surface to p. Precondition: !empty().
+  /// The closest point of the surface to p. Precondition: !empty(). Throws std::invalid_argument
+  /// when p is not finite.
   SurfaceHit closestPoint(const std::array<double, 3>& p) const;
 
   /// The same closest point as closestPoint(p), found faster when face `hintFace` of the source

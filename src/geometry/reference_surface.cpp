@@ -206,6 +206,8 @@ SurfaceHit ReferenceSurface::closestPoint(const std::array<double, 3>& p,
     stack[top++] = leftNearer ? node.right : node.first;
     stack[top++] = leftNearer ? node.first : node.right;
   }
+  if (bestTri == std::numeric_limits<std::uint32_t>::max())
+    throw std::invalid_argument("ReferenceSurface::closestPoint: the query point is not finite");
   hit.distance = std::sqrt(best2);
   hit.face = triFace_[bestTri];
   return hit;

@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -38,6 +39,10 @@ void checkMesh(const QuadMesh& mesh) {
                                       std::to_string(c));
     }
   }
+  for (std::size_t v = 0; v < n; ++v)
+    for (const double x : mesh.points[v])
+      if (!std::isfinite(x))
+        throw std::invalid_argument("point " + std::to_string(v) + " has a non-finite coordinate");
   if (!mesh.constraints.empty() && mesh.constraints.size() != n)
     throw std::invalid_argument("the mesh has " + std::to_string(mesh.constraints.size()) +
                                 " constraints for " + std::to_string(n) + " points");

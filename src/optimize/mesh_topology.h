@@ -15,7 +15,8 @@ namespace voxremesh::opt {
 
 using geom::Vec3;
 
-/// Throws std::invalid_argument when a face names a missing point or repeats a corner, or the
+/// Throws std::invalid_argument when a point has a non-finite coordinate, a face names a missing
+/// point or repeats a corner, or the
 /// constraints are neither empty nor one per point, or a curve constraint names a missing or
 /// empty curve.
 void checkMesh(const QuadMesh& mesh);
