@@ -27,6 +27,8 @@ const char* const kHelp =
     "the minimum element length (LS-DYNA characteristic length); per mesh the share of trias and,\n"
     "with --original, the two-sided distance to the original surface. Prints a table (metric,\n"
     "limit, worst value, failing count and share). Definitions: include/voxremesh/quality.h.\n"
+    "The exit code is 0 whether or not the mesh passes (the table's last line, \"pass\" in JSON);\n"
+    "1 for unreadable input or bad limits, 2 for a malformed command line.\n"
     "\n"
     "options:\n"
     "  --original ORIG       the deck DECK was remeshed from (the same --part is taken from it)\n"
