@@ -265,7 +265,7 @@ TEST(CleanUpMesh, CollapsesQuadsFoldedAlongACurve) {
                       {PointRole::Corner, voxremesh::kNoCurve}};
   mesh.faces = {{0, 1, 2, 6}, {0, 6, 5, kNoCorner}, {2, 3, 4, 7}, {2, 7, 6, kNoCorner}};
   const voxremesh::CleanupResult r = voxremesh::cleanUpMesh(mesh, 1e-9);
-  EXPECT_EQ(r.foldedCurveQuads, 2u);
+  EXPECT_EQ(r.foldedCurveFaces, 2u);
   EXPECT_EQ(mesh.points.size(), 6u);
   double area = 0.0;
   for (const auto& q : voxremesh::elementQualities(mesh)) EXPECT_LT(q.maxAngleDeg, 150.0);
@@ -313,6 +313,24 @@ TEST(CleanUpMesh, RemovesFoldsAndRepeatedFaces) {
   EXPECT_EQ(r.duplicateFaces, 3u);  // the fold pair and one of the same-way copies
   EXPECT_EQ(mesh.faces.size(), std::size_t(n * n - 1));
   for (const auto& face : mesh.faces) EXPECT_NE(face, f);
+}
+
+TEST(CleanUpMesh, CollapsesSliverTrianglesAlongACurve) {
+  // A sliver (b0, b1, b2) under the quad (b0, b2, t2, t0): b1 is on the bottom curve, 0.01 off the
+  // line b0-b2, with a 179-degree angle; it merges into b0 and the sliver vanishes.
+  QuadMesh mesh;
+  mesh.points = {{0, 0, 0}, {1, -0.01, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}};
+  voxremesh::MeshCurve bottom;
+  bottom.points = {{0, 0, 0}, {1, -0.01, 0}, {2, 0, 0}};
+  mesh.curves = {bottom};
+  const voxremesh::PointConstraint corner{PointRole::Corner, voxremesh::kNoCurve};
+  mesh.constraints = {corner, {PointRole::Boundary, 0}, corner, corner, corner};
+  mesh.faces = {{0, 1, 2, kNoCorner}, {0, 2, 3, 4}};
+  const voxremesh::CleanupResult r = voxremesh::cleanUpMesh(mesh, 0.0);
+  EXPECT_EQ(r.foldedCurveFaces, 1u);
+  ASSERT_EQ(mesh.faces.size(), 1u);
+  EXPECT_EQ(voxremesh::cornerCount(mesh.faces[0]), 4);
+  EXPECT_EQ(mesh.points.size(), 4u);
 }
 
 TEST(MergeTrianglePairs, JoinsASplitQuadBack) {

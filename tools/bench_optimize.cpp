@@ -191,7 +191,7 @@ int run(int argc, char** argv) {
   std::printf("  optimise (best of %d):\n", repeat);
   std::printf("    clean-up          %8.4f s  (%zu zero-area, %zu doublets, %zu folded)\n",
               best.cleanupSeconds, best.cleanup.zeroAreaFaces, best.cleanup.valence2Points,
-              best.cleanup.foldedCurveQuads);
+              best.cleanup.foldedCurveFaces);
   std::printf("    rhombic collapse  %8.4f s  (%zu quads)\n", best.rhombicSeconds,
               best.rhombicCollapsed);
   std::printf("    relaxation        %8.4f s\n", best.relaxSeconds);

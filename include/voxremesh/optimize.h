@@ -83,7 +83,7 @@ struct CleanupResult {
   std::size_t shortEdges = 0;      ///< edges shorter than the short-edge threshold collapsed
   std::size_t duplicateFaces = 0;  ///< faces removed for using the same points as another
   std::size_t valence2Points = 0;  ///< Free interior points in exactly two faces (doublets) removed
-  std::size_t foldedCurveQuads = 0;  ///< quads folded along a curve, reduced to triangles
+  std::size_t foldedCurveFaces = 0;  ///< faces folded along a curve (quads -> triangles, slivers)
 };
 
 /// Clean-up: (0) duplicate faces: of faces using the same points, a pair running opposite ways
@@ -94,11 +94,12 @@ struct CleanupResult {
 /// manifold and the constraints allow it (see the top of the file); (2) doublets: a Free point
 /// that is not on the boundary and lies in exactly two faces is removed and the two faces become
 /// one (two quads -> a quad, a quad and a triangle -> a triangle, two triangles -> nothing).
-/// Constrained points in doublets are kept; (3) quads folded along a curve: three consecutive
+/// Constrained points in doublets are kept; (3) faces folded along a curve: three consecutive
 /// corners a, b, c on one curve (b a Feature/Boundary/Junction point, a and c on its curve or
 /// Corners) with an interior angle above 150 degrees at b: b merges into the nearer of a and c
-/// (the quad becomes a triangle; the constraint rules above apply). Rounds repeat until nothing
-/// changes. Unused points are removed at the end (indices of points change; order is kept).
+/// (a quad becomes a triangle, a triangle vanishes; the constraint rules above apply). Rounds
+/// repeat until nothing changes. Unused points are removed at the end (indices of points change;
+/// order is kept).
 /// @param zeroArea   area threshold in model units squared, finite and >= 0
 /// @param shortEdge  edge length threshold in model units, finite and >= 0 (0: none)
 /// Throws std::invalid_argument for a bad threshold or mesh.

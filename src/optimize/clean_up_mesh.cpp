@@ -14,7 +14,7 @@ namespace {
 
 using geom::operator-;
 
-/// Interior angle of a quad at a curve point above which the quad is folded along the curve.
+/// Interior angle of a face at a curve point above which the face is folded along the curve.
 constexpr double kFoldedCurveAngleDeg = 150.0;
 
 /// Drops repeated consecutive corners of every face (a-a-b-c is the triangle a-b-c); faces left
@@ -167,20 +167,21 @@ bool onCurveOf(const QuadMesh& mesh, CornerIndex a, CornerIndex b) {
          (role != PointRole::Free && mesh.constraints[a].curve == mesh.constraints[b].curve);
 }
 
-/// One round of folded-curve collapses: a quad with three consecutive corners a, b, c on one
+/// One round of folded-curve collapses: a face with three consecutive corners a, b, c on one
 /// curve (b a curve point, a and c on its curve or Corners) and an interior angle above
-/// kFoldedCurveAngleDeg at b lies along the curve like a triangle with b on its side; b merges
-/// into the nearer of a and c. Returns the number done.
-std::size_t collapseFoldedCurveQuads(QuadMesh& mesh) {
+/// kFoldedCurveAngleDeg at b lies along the curve (a quad like a triangle with b on its side, a
+/// triangle as a sliver); b merges into the nearer of a and c. Returns the number done.
+std::size_t collapseFoldedCurveFaces(QuadMesh& mesh) {
   if (mesh.constraints.empty()) return 0;
   const opt::Topology topology = opt::buildTopology(mesh);
   std::vector<std::uint8_t> locked(mesh.points.size(), 0), deleted(mesh.faces.size(), 0);
   std::size_t done = 0;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const auto face = mesh.faces[f];
-    if (deleted[f] || cornerCount(face) != 4) continue;
-    for (std::size_t k = 0; k < 4; ++k) {
-      const CornerIndex a = face[(k + 3) % 4], b = face[k], c = face[(k + 1) % 4];
+    const std::size_t n = static_cast<std::size_t>(cornerCount(face));
+    if (deleted[f]) continue;
+    for (std::size_t k = 0; k < n; ++k) {
+      const CornerIndex a = face[(k + n - 1) % n], b = face[k], c = face[(k + 1) % n];
       const PointRole role = opt::roleOf(mesh, b);
       if (role == PointRole::Free || role == PointRole::Corner || !onCurveOf(mesh, a, b) ||
           !onCurveOf(mesh, c, b))
@@ -217,8 +218,8 @@ CleanupResult cleanUpMesh(QuadMesh& mesh, double zeroArea, double shortEdge) {
     const std::size_t zero = collapseSmallFaces(mesh, zeroArea, shortEdge, result);
     const std::size_t doublets = removeDoublets(mesh);
     result.valence2Points += doublets;
-    const std::size_t folded = collapseFoldedCurveQuads(mesh);
-    result.foldedCurveQuads += folded;
+    const std::size_t folded = collapseFoldedCurveFaces(mesh);
+    result.foldedCurveFaces += folded;
     if (duplicates == 0 && zero == 0 && doublets == 0 && folded == 0) break;
   }
   eraseUnusedPoints(mesh);

@@ -58,7 +58,7 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
     s.cleanup.shortEdges += r.shortEdges;
     s.cleanup.duplicateFaces += r.duplicateFaces;
     s.cleanup.valence2Points += r.valence2Points;
-    s.cleanup.foldedCurveQuads += r.foldedCurveQuads;
+    s.cleanup.foldedCurveFaces += r.foldedCurveFaces;
     s.cleanupSeconds += secondsSince(t);
   };
   auto relax = [&] {
