@@ -4,8 +4,10 @@
 //
 // Constraints (quad_mesh.h) hold in every step: Corner points never move; Feature, Boundary and
 // Junction points move only along mesh.curves[constraint.curve] (each new position is the closest
-// point of that curve); Free points move on the surface. Topology steps never remove a Corner
-// point and merge a constrained point only into a point of the same curve or into a Corner.
+// point of that curve); Free points move on the surface (relaxation projects them on the
+// original; warping removal takes them off it by at most its maxMove). Topology steps never merge
+// a Corner point into another point, and merge a constrained point only into a point of the same
+// curve or into a Corner.
 // Every step is deterministic: the result does not depend on the number of TBB threads.
 //
 // Preconditions of every step (std::invalid_argument otherwise): coordinates are finite; every
