@@ -201,7 +201,7 @@ TEST(CleanUpMesh, RemovesDoublets) {
   mesh.faces[5] = {face[0], face[1], face[2], v};
   mesh.faces.push_back({face[2], face[3], face[0], v});
   const QuadMesh planted = mesh;
-  const voxremesh::CleanupResult r = voxremesh::cleanUpMesh(mesh, 1e-6);
+  const voxremesh::CleanupResult r = voxremesh::cleanUpMesh(mesh, {1e-6});
   EXPECT_EQ(r.valence2Points, 1u);
   EXPECT_EQ(r.zeroAreaFaces, 0u);
   EXPECT_EQ(mesh.faces.size(), std::size_t(n * n));
@@ -235,7 +235,7 @@ TEST(CleanUpMesh, CollapsesAColumnOfZeroAreaQuads) {
     const CornerIndex v = static_cast<CornerIndex>(j * (n + 1) + 2);
     mesh.faces.push_back({v, copy[j], copy[j + 1], v + n + 1});
   }
-  const voxremesh::CleanupResult r = voxremesh::cleanUpMesh(mesh, 1e-9);
+  const voxremesh::CleanupResult r = voxremesh::cleanUpMesh(mesh, {1e-9});
   EXPECT_GE(r.zeroAreaFaces, std::size_t(n));
   EXPECT_EQ(mesh.faces.size(), std::size_t(n * n));
   EXPECT_EQ(mesh.points.size(), std::size_t((n + 1) * (n + 1)));
@@ -264,7 +264,10 @@ TEST(CleanUpMesh, CollapsesQuadsFoldedAlongACurve) {
                       {PointRole::Boundary, 1},
                       {PointRole::Corner, voxremesh::kNoCurve}};
   mesh.faces = {{0, 1, 2, 6}, {0, 6, 5, kNoCorner}, {2, 3, 4, 7}, {2, 7, 6, kNoCorner}};
-  const voxremesh::CleanupResult r = voxremesh::cleanUpMesh(mesh, 1e-9);
+  QuadMesh kept = mesh;
+  EXPECT_EQ(voxremesh::cleanUpMesh(kept, {1e-9, 0.0, false}).foldedCurveFaces, 0u);
+  EXPECT_EQ(kept.faces, mesh.faces);
+  const voxremesh::CleanupResult r = voxremesh::cleanUpMesh(mesh, {1e-9});
   EXPECT_EQ(r.foldedCurveFaces, 2u);
   EXPECT_EQ(mesh.points.size(), 6u);
   double area = 0.0;
@@ -284,9 +287,9 @@ TEST(CleanUpMesh, CollapsesShortEdgesOnlyWhenAsked) {
   QuadMesh mesh = grid(n);
   mesh.points[2 * (n + 1) + 2][0] = 2.9;  // edge to (3, 2) now 0.1 long
   QuadMesh untouched = mesh;
-  EXPECT_EQ(voxremesh::cleanUpMesh(untouched, 1e-9).shortEdges, 0u);
+  EXPECT_EQ(voxremesh::cleanUpMesh(untouched, {1e-9}).shortEdges, 0u);
   EXPECT_EQ(untouched.faces.size(), std::size_t(n * n));
-  const voxremesh::CleanupResult r = voxremesh::cleanUpMesh(mesh, 1e-9, 0.2);
+  const voxremesh::CleanupResult r = voxremesh::cleanUpMesh(mesh, {1e-9, 0.2});
   EXPECT_EQ(r.shortEdges, 1u);
   EXPECT_EQ(mesh.points.size(), std::size_t((n + 1) * (n + 1) - 1));
   std::size_t triangles = 0;
@@ -300,7 +303,7 @@ TEST(CleanUpMesh, CollapsesShortEdgesOnlyWhenAsked) {
     }
   EXPECT_LT(voxremesh::surfaceDistance(mesh, grid(n)).max(), 1e-12);
   expectConstraintsHold(mesh, n);
-  EXPECT_THROW(voxremesh::cleanUpMesh(mesh, 0.0, -1.0), std::invalid_argument);
+  EXPECT_THROW(voxremesh::cleanUpMesh(mesh, {0.0, -1.0}), std::invalid_argument);
 }
 
 TEST(CleanUpMesh, RemovesFoldsAndRepeatedFaces) {
@@ -309,7 +312,7 @@ TEST(CleanUpMesh, RemovesFoldsAndRepeatedFaces) {
   const auto f = mesh.faces[4];
   mesh.faces.push_back(f);                         // the same face again, same way round
   mesh.faces.push_back({f[0], f[3], f[2], f[1]});  // and back to back
-  const voxremesh::CleanupResult r = voxremesh::cleanUpMesh(mesh, 1e-9);
+  const voxremesh::CleanupResult r = voxremesh::cleanUpMesh(mesh, {1e-9});
   EXPECT_EQ(r.duplicateFaces, 3u);  // the fold pair and one of the same-way copies
   EXPECT_EQ(mesh.faces.size(), std::size_t(n * n - 1));
   for (const auto& face : mesh.faces) EXPECT_NE(face, f);
@@ -326,7 +329,7 @@ TEST(CleanUpMesh, CollapsesSliverTrianglesAlongACurve) {
   const voxremesh::PointConstraint corner{PointRole::Corner, voxremesh::kNoCurve};
   mesh.constraints = {corner, {PointRole::Boundary, 0}, corner, corner, corner};
   mesh.faces = {{0, 1, 2, kNoCorner}, {0, 2, 3, 4}};
-  const voxremesh::CleanupResult r = voxremesh::cleanUpMesh(mesh, 0.0);
+  const voxremesh::CleanupResult r = voxremesh::cleanUpMesh(mesh, {0.0});
   EXPECT_EQ(r.foldedCurveFaces, 1u);
   ASSERT_EQ(mesh.faces.size(), 1u);
   EXPECT_EQ(voxremesh::cornerCount(mesh.faces[0]), 4);

@@ -8,10 +8,10 @@
 // and the number of boundary loops (outer contour and holes) of the input and of both meshes. The
 // failing share is given for all criteria of quality.h and for the ones the shared data README
 // measures the input decks with (warping, angles, aspect, scaled Jacobian).
-// Options: --size H, --threads N (default: all), --repeat N (default 3), -o OUT.k (write the
-// optimised mesh).
+// Options: --part PID (a deck with several parts), --size H, --threads N (default: all),
+// --repeat N (default 3), -o OUT.k (write the optimised mesh).
 //
-// usage: bench_optimize [DECK] [--size H] [--threads N] [--repeat N] [-o OUT.k]
+// usage: bench_optimize [DECK] [--part PID] [--size H] [--threads N] [--repeat N] [-o OUT.k]
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
@@ -113,6 +113,7 @@ int run(int argc, char** argv) {
   std::string deck = "../shared/data/bracket.k", out;
   double size = 4.5;
   int threads = 0, repeat = 3;
+  Id part = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool hasValue = i + 1 < argc;
@@ -122,14 +123,16 @@ int run(int argc, char** argv) {
       threads = std::atoi(argv[++i]);
     else if (arg == "--repeat" && hasValue)
       repeat = std::max(1, std::atoi(argv[++i]));
+    else if (arg == "--part" && hasValue)
+      part = std::atoll(argv[++i]);
     else if (arg == "-o" && hasValue)
       out = argv[++i];
     else if (!arg.empty() && arg[0] != '-')
       deck = arg;
     else {
-      std::fprintf(
-          stderr,
-          "usage: bench_optimize [DECK] [--size H] [--threads N] [--repeat N] [-o OUT.k]\n");
+      std::fprintf(stderr,
+                   "usage: bench_optimize [DECK] [--part PID] [--size H] [--threads N] [--repeat "
+                   "N] [-o OUT.k]\n");
       return 2;
     }
   }
@@ -139,10 +142,11 @@ int run(int argc, char** argv) {
                                                     std::size_t(threads));
 
   const FeModel model = readDeck(deck);
-  const std::vector<Sheet> sheets = buildAllSheets(model);
-  if (sheets.empty()) throw std::runtime_error(deck + " has no shells");
+  const std::vector<Sheet> sheets = part ? buildSheets(model, part) : buildAllSheets(model);
+  if (sheets.empty()) throw std::runtime_error(deck + " has no shells of that part");
   for (const Sheet& sheet : sheets)
-    if (sheet.part != sheets[0].part) throw std::runtime_error(deck + " has several parts");
+    if (sheet.part != sheets[0].part)
+      throw std::runtime_error(deck + " has several parts: choose one with --part");
   const QuadMesh input = quadMeshFromModel(model, sheets[0].part);
 
   VolumeSettings volumeSettings;

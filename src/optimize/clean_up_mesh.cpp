@@ -202,7 +202,8 @@ std::size_t collapseFoldedCurveFaces(QuadMesh& mesh) {
 
 }  // namespace
 
-CleanupResult cleanUpMesh(QuadMesh& mesh, double zeroArea, double shortEdge) {
+CleanupResult cleanUpMesh(QuadMesh& mesh, const CleanupSettings& settings) {
+  const double zeroArea = settings.zeroArea, shortEdge = settings.shortEdge;
   if (!std::isfinite(zeroArea) || zeroArea < 0.0)
     throw std::invalid_argument("cleanUpMesh: zero-area threshold " + std::to_string(zeroArea) +
                                 " is not finite and >= 0");
@@ -218,7 +219,7 @@ CleanupResult cleanUpMesh(QuadMesh& mesh, double zeroArea, double shortEdge) {
     const std::size_t zero = collapseSmallFaces(mesh, zeroArea, shortEdge, result);
     const std::size_t doublets = removeDoublets(mesh);
     result.valence2Points += doublets;
-    const std::size_t folded = collapseFoldedCurveFaces(mesh);
+    const std::size_t folded = settings.foldedCurves ? collapseFoldedCurveFaces(mesh) : 0;
     result.foldedCurveFaces += folded;
     if (duplicates == 0 && zero == 0 && doublets == 0 && folded == 0) break;
   }

@@ -48,12 +48,14 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
   OptimizeStats s;
   QualitySettings quality = settings.quality;
   if (quality.targetSize == 0.0) quality.targetSize = medianEdgeLength(mesh);
-  const double zeroArea = settings.zeroAreaFactor * quality.targetSize * quality.targetSize;
-  const double shortEdge = settings.shortEdgeFactor * quality.targetSize;
+  CleanupSettings cleanupSettings;
+  cleanupSettings.zeroArea = settings.zeroAreaFactor * quality.targetSize * quality.targetSize;
+  cleanupSettings.shortEdge = settings.shortEdgeFactor * quality.targetSize;
+  cleanupSettings.foldedCurves = settings.collapseFoldedCurves;
 
   auto cleanUp = [&] {
     const Clock::time_point t = Clock::now();
-    const CleanupResult r = cleanUpMesh(mesh, zeroArea, shortEdge);
+    const CleanupResult r = cleanUpMesh(mesh, cleanupSettings);
     s.cleanup.zeroAreaFaces += r.zeroAreaFaces;
     s.cleanup.shortEdges += r.shortEdges;
     s.cleanup.duplicateFaces += r.duplicateFaces;
