@@ -76,4 +76,8 @@ QuadMesh quadMeshFromModel(const FeModel& model, Id part = 0);
 /// part `part` (defined, unnamed). Preconditions: every face names existing points.
 FeModel modelFromQuadMesh(const QuadMesh& mesh, Id part = 1);
 
+/// Removes the points no face uses, keeping the order of the others and their constraints, and
+/// renumbers the faces. Preconditions: every face names existing points.
+void eraseUnusedPoints(QuadMesh& mesh);
+
 }  // namespace voxremesh

@@ -13,26 +13,6 @@ namespace voxremesh {
 
 namespace {
 
-/// Drops points no face uses, keeping the order of the others.
-void removeUnusedPoints(QuadMesh& mesh) {
-  std::vector<CornerIndex> newIndex(mesh.points.size(), kNoCorner);
-  for (const auto& face : mesh.faces)
-    for (int c = 0; c < cornerCount(face); ++c) newIndex[face[std::size_t(c)]] = 0;
-  CornerIndex next = 0;
-  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-    if (newIndex[i] == kNoCorner) continue;
-    newIndex[i] = next;
-    mesh.points[next] = mesh.points[i];
-    if (!mesh.constraints.empty()) mesh.constraints[next] = mesh.constraints[i];
-    ++next;
-  }
-  mesh.points.resize(next);
-  if (!mesh.constraints.empty()) mesh.constraints.resize(next);
-  for (auto& face : mesh.faces)
-    for (int c = 0; c < cornerCount(face); ++c)
-      face[std::size_t(c)] = newIndex[face[std::size_t(c)]];
-}
-
 /// Merges points with identical coordinates (dual vertices snapped onto one feature point, the
 /// ends of a bridge in the boundary strip), keeping the first; a quad that loses a corner becomes
 /// a triangle, faces with fewer than three distinct corners are dropped. Returns the number of
@@ -126,7 +106,7 @@ QuadMesh extractQuadMesh(const Volume& volume, const ExtractSettings& settings,
     counts.stripTriangles = strip.triangles;
   }
   weldCoincidentPoints(mesh);
-  removeUnusedPoints(mesh);
+  eraseUnusedPoints(mesh);
   if (stats) *stats = counts;
   return mesh;
 }

@@ -53,4 +53,23 @@ FeModel modelFromQuadMesh(const QuadMesh& mesh, Id part) {
   return model;
 }
 
+void eraseUnusedPoints(QuadMesh& mesh) {
+  std::vector<CornerIndex> newIndex(mesh.points.size(), kNoCorner);
+  for (const auto& face : mesh.faces)
+    for (int k = 0; k < cornerCount(face); ++k) newIndex[face[static_cast<std::size_t>(k)]] = 0;
+  CornerIndex next = 0;
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) {
+    if (newIndex[v] == kNoCorner) continue;
+    newIndex[v] = next;
+    mesh.points[next] = mesh.points[v];
+    if (!mesh.constraints.empty()) mesh.constraints[next] = mesh.constraints[v];
+    ++next;
+  }
+  mesh.points.resize(next);
+  if (!mesh.constraints.empty()) mesh.constraints.resize(next);
+  for (auto& face : mesh.faces)
+    for (int k = 0; k < cornerCount(face); ++k)
+      face[static_cast<std::size_t>(k)] = newIndex[face[static_cast<std::size_t>(k)]];
+}
+
 }  // namespace voxremesh

@@ -41,6 +41,8 @@ int runRemesh(const std::vector<std::string>& args);
 int runBatchCommand(const std::vector<std::string>& args);
 /// `voxremesh -ACTION ...`, an action chain (cli_chain.cpp); receives all arguments.
 int runChain(const std::vector<std::string>& args);
+/// `voxremesh quality` (cli_quality.cpp).
+int runQuality(const std::vector<std::string>& args);
 
 /// A malformed command line (unknown option, missing argument, ...): main prints the message and
 /// the command's usage line on stderr and exits with 2.

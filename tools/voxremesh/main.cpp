@@ -33,6 +33,8 @@ constexpr Command kCommands[] = {
      voxremesh::cli::runExtract},
     {"batch", "run the jobs of a JSON job file in parallel, with a summary",
      voxremesh::cli::runBatchCommand},
+    {"quality", "FE quality criteria of a deck's shells: table, JSON, .vtu",
+     voxremesh::cli::runQuality},
 };
 
 const char* const kUsage = "voxremesh COMMAND [options]  (see voxremesh --help)";

@@ -1,0 +1,86 @@
+// Exact closest points on a fixed triangle/quad surface and on polylines: the original surface
+// that the optimiser projects onto and that the quality stage measures distances to.
+//
+// The surface is the triangles of a QuadMesh's faces (a quad split into p0-p1-p2 and p0-p2-p3).
+// Queries use a bounding-volume hierarchy (median splits along the longest axis of the triangle
+// centroids, four triangles a leaf) and the exact point-triangle distance (Ericson, Real-Time
+// Collision Detection 5.1.5). A query's answer depends only on the surface and the query point:
+// on exact distance ties the triangle that comes first in face order wins, so results are the
+// same for any number of threads.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "voxremesh/quad_mesh.h"
+
+namespace voxremesh {
+
+/// The closest point of a surface to a query point.
+struct SurfaceHit {
+  std::array<double, 3> point{};  ///< the closest point
+  double distance = 0.0;          ///< its distance to the query point
+  std::uint32_t face = 0;         ///< the face of the source mesh it lies on
+};
+
+/// A static surface with exact closest-point queries (see the top of the file).
+class ReferenceSurface {
+ public:
+  /// An empty surface (closestPoint must not be called on it).
+  ReferenceSurface() = default;
+
+  /// Builds the hierarchy over the triangles of `mesh`'s faces (constraints and curves are not
+  /// used). Faces with a repeated corner are kept (their triangles are degenerate segments).
+  /// Throws std::invalid_argument when a face names a missing point or a coordinate is not finite.
+  explicit ReferenceSurface(const QuadMesh& mesh);
+
+  /// True without triangles.
+  bool empty() const { return tris_.empty(); }
+  /// The number of triangles.
+  std::size_t triangleCount() const { return tris_.size(); }
+
+  /// The closest point of the surface to p. Precondition: !empty(). Throws std::invalid_argument
+  /// when p is not finite.
+  SurfaceHit closestPoint(const std::array<double, 3>& p) const;
+
+  /// The same closest point as closestPoint(p), found faster when face `hintFace` of the source
+  /// mesh (e.g. the face of the previous answer for a point that moved a little) is close to p:
+  /// its triangles bound the search from the start. Any hint gives the same answer; a hint that
+  /// is not a face index is ignored.
+  SurfaceHit closestPoint(const std::array<double, 3>& p, std::uint32_t hintFace) const;
+
+  /// The closest points of many queries, computed in parallel (TBB); result[i] is for queries[i].
+  /// Precondition: !empty().
+  std::vector<SurfaceHit> closestPoints(const std::vector<std::array<double, 3>>& queries) const;
+
+ private:
+  struct Node {
+    std::array<double, 3> lo{}, hi{};
+    std::uint32_t first = 0;  ///< leaf: first index into order_; inner: the left child
+    std::uint32_t count = 0;  ///< leaf: number of triangles; inner: 0
+    std::uint32_t right = 0;  ///< inner: the right child
+  };
+  std::uint32_t build(std::uint32_t begin, std::uint32_t end,
+                      const std::vector<std::array<double, 3>>& centroids);
+
+  std::vector<std::array<double, 3>> points_;
+  std::vector<std::array<std::uint32_t, 3>> tris_;
+  std::vector<std::uint32_t> triFace_;       ///< the source face of each triangle
+  std::vector<std::uint32_t> faceTriStart_;  ///< per source face, its first triangle (+ end)
+  std::vector<std::uint32_t> order_;         ///< triangles in leaf order
+  std::vector<Node> nodes_;                  ///< nodes_[0] is the root
+};
+
+/// The closest point of segment [a, b] to p (a when the segment has zero length).
+std::array<double, 3> closestPointOnSegment(const std::array<double, 3>& p,
+                                            const std::array<double, 3>& a,
+                                            const std::array<double, 3>& b);
+
+/// The closest point of a polyline to p (the first segment wins exact ties); a closed polyline
+/// also has the segment from its last point back to its first. A single point is its own closest
+/// point. Precondition: points is not empty (std::invalid_argument otherwise).
+std::array<double, 3> closestPointOnPolyline(const std::vector<std::array<double, 3>>& points,
+                                             bool closed, const std::array<double, 3>& p);
+
+}  // namespace voxremesh

@@ -1,0 +1,227 @@
+// ReferenceSurface: a bounding-volume hierarchy over the triangles of a mesh with exact
+// closest-point queries, and closest points on segments and polylines.
+#include "voxremesh/reference_surface.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "geometry/vec3.h"
+
+namespace voxremesh {
+
+using namespace geom;  // NOLINT: the vector operators
+
+namespace {
+
+constexpr std::uint32_t kLeafSize = 4;
+
+/// The closest point of triangle (a, b, c) to p (Ericson 5.1.5); degenerate triangles fall back
+/// to the closest of their edges.
+Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + ab * (d1 / (d1 - d3));
+  const Vec3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double sum = va + vb + vc;
+  if (!(sum > 0.0) || !std::isfinite(sum)) {
+    const Vec3 e[3] = {closestPointOnSegment(p, a, b), closestPointOnSegment(p, b, c),
+                       closestPointOnSegment(p, c, a)};
+    int best = 0;
+    for (int k = 1; k < 3; ++k)
+      if (dot(p - e[k], p - e[k]) < dot(p - e[best], p - e[best])) best = k;
+    return e[best];
+  }
+  return a + ab * (vb / sum) + ac * (vc / sum);
+}
+
+/// Squared distance from p to the box [lo, hi].
+double boxDistance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
+  double d2 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = p[k] < lo[k] ? lo[k] - p[k] : (p[k] > hi[k] ? p[k] - hi[k] : 0.0);
+    d2 += d * d;
+  }
+  return d2;
+}
+
+}  // namespace
+
+std::array<double, 3> closestPointOnSegment(const std::array<double, 3>& p,
+                                            const std::array<double, 3>& a,
+                                            const std::array<double, 3>& b) {
+  const Vec3 ab = b - a;
+  const double length2 = dot(ab, ab);
+  if (!(length2 > 0.0)) return a;
+  const double t = std::clamp(dot(p - a, ab) / length2, 0.0, 1.0);
+  return a + ab * t;
+}
+
+std::array<double, 3> closestPointOnPolyline(const std::vector<std::array<double, 3>>& points,
+                                             bool closed, const std::array<double, 3>& p) {
+  if (points.empty()) throw std::invalid_argument("closestPointOnPolyline: empty polyline");
+  Vec3 best = points[0];
+  double bestD2 = dot(p - best, p - best);
+  const std::size_t segments = closed && points.size() > 2 ? points.size() : points.size() - 1;
+  for (std::size_t i = 0; i < segments; ++i) {
+    const Vec3 q = closestPointOnSegment(p, points[i], points[(i + 1) % points.size()]);
+    const double d2 = dot(p - q, p - q);
+    if (d2 < bestD2) best = q, bestD2 = d2;
+  }
+  return best;
+}
+
+ReferenceSurface::ReferenceSurface(const QuadMesh& mesh) : points_(mesh.points) {
+  for (const auto& point : points_)
+    for (double x : point)
+      if (!std::isfinite(x))
+        throw std::invalid_argument("reference surface: a point has a non-finite coordinate");
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    faceTriStart_.push_back(static_cast<std::uint32_t>(tris_.size()));
+    const auto& face = mesh.faces[f];
+    const int n = cornerCount(face);
+    for (int k = 0; k < n; ++k)
+      if (face[static_cast<std::size_t>(k)] >= points_.size())
+        throw std::invalid_argument("reference surface: face " + std::to_string(f) +
+                                    " names a missing point");
+    tris_.push_back({face[0], face[1], face[2]});
+    triFace_.push_back(static_cast<std::uint32_t>(f));
+    if (n == 4) {
+      tris_.push_back({face[0], face[2], face[3]});
+      triFace_.push_back(static_cast<std::uint32_t>(f));
+    }
+  }
+  faceTriStart_.push_back(static_cast<std::uint32_t>(tris_.size()));
+  if (tris_.empty()) return;
+  std::vector<Vec3> centroids(tris_.size());
+  for (std::size_t t = 0; t < tris_.size(); ++t)
+    centroids[t] =
+        (points_[tris_[t][0]] + points_[tris_[t][1]] + points_[tris_[t][2]]) * (1.0 / 3.0);
+  order_.resize(tris_.size());
+  for (std::uint32_t t = 0; t < order_.size(); ++t) order_[t] = t;
+  nodes_.reserve(2 * tris_.size() / kLeafSize + 2);
+  nodes_.emplace_back();
+  build(0, static_cast<std::uint32_t>(order_.size()), centroids);
+}
+
+std::uint32_t ReferenceSurface::build(std::uint32_t begin, std::uint32_t end,
+                                      const std::vector<std::array<double, 3>>& centroids) {
+  // Called with this node already appended to nodes_ (nodes_ may grow: no references kept).
+  const std::uint32_t index = static_cast<std::uint32_t>(nodes_.size() - 1);
+  Vec3 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+          std::numeric_limits<double>::infinity()};
+  Vec3 hi = lo * -1.0;
+  Vec3 clo = lo, chi = hi;
+  for (std::uint32_t i = begin; i < end; ++i) {
+    for (const std::uint32_t v : tris_[order_[i]])
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], points_[v][k]);
+        hi[k] = std::max(hi[k], points_[v][k]);
+      }
+    for (int k = 0; k < 3; ++k) {
+      clo[k] = std::min(clo[k], centroids[order_[i]][k]);
+      chi[k] = std::max(chi[k], centroids[order_[i]][k]);
+    }
+  }
+  nodes_[index].lo = lo;
+  nodes_[index].hi = hi;
+  if (end - begin <= kLeafSize) {
+    nodes_[index].first = begin;
+    nodes_[index].count = end - begin;
+    return index;
+  }
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (chi[k] - clo[k] > chi[axis] - clo[axis]) axis = k;
+  const std::uint32_t middle = begin + (end - begin) / 2;
+  std::nth_element(order_.begin() + begin, order_.begin() + middle, order_.begin() + end,
+                   [&](std::uint32_t a, std::uint32_t b) {
+                     const double ca = centroids[a][axis], cb = centroids[b][axis];
+                     return ca < cb || (ca == cb && a < b);
+                   });
+  nodes_.emplace_back();
+  const std::uint32_t left = build(begin, middle, centroids);
+  nodes_.emplace_back();
+  const std::uint32_t right = build(middle, end, centroids);
+  nodes_[index].first = left;
+  nodes_[index].count = 0;
+  nodes_[index].right = right;
+  return index;
+}
+
+SurfaceHit ReferenceSurface::closestPoint(const std::array<double, 3>& p) const {
+  return closestPoint(p, std::numeric_limits<std::uint32_t>::max());
+}
+
+SurfaceHit ReferenceSurface::closestPoint(const std::array<double, 3>& p,
+                                          std::uint32_t hintFace) const {
+  SurfaceHit hit;
+  double best2 = std::numeric_limits<double>::infinity();
+  std::uint32_t bestTri = std::numeric_limits<std::uint32_t>::max();
+  // The best so far under the order (squared distance, triangle index), whatever the visit order.
+  auto consider = [&](std::uint32_t t) {
+    const auto& c = tris_[t];
+    const Vec3 q = closestOnTriangle(p, points_[c[0]], points_[c[1]], points_[c[2]]);
+    const double d2 = dot(p - q, p - q);
+    if (d2 < best2 || (d2 == best2 && t < bestTri)) {
+      best2 = d2;
+      bestTri = t;
+      hit.point = q;
+    }
+  };
+  if (faceTriStart_.size() > 1 && hintFace < faceTriStart_.size() - 1)
+    for (std::uint32_t t = faceTriStart_[hintFace]; t < faceTriStart_[hintFace + 1]; ++t)
+      consider(t);
+  std::uint32_t stack[128];
+  std::size_t top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& node = nodes_[stack[--top]];
+    if (boxDistance2(p, node.lo, node.hi) > best2) continue;
+    if (node.count > 0) {
+      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) consider(order_[i]);
+      continue;
+    }
+    // Visit the nearer child first: push it last.
+    const Node& l = nodes_[node.first];
+    const Node& r = nodes_[node.right];
+    const bool leftNearer = boxDistance2(p, l.lo, l.hi) <= boxDistance2(p, r.lo, r.hi);
+    stack[top++] = leftNearer ? node.right : node.first;
+    stack[top++] = leftNearer ? node.first : node.right;
+  }
+  if (bestTri == std::numeric_limits<std::uint32_t>::max())
+    throw std::invalid_argument("ReferenceSurface::closestPoint: the query point is not finite");
+  hit.distance = std::sqrt(best2);
+  hit.face = triFace_[bestTri];
+  return hit;
+}
+
+std::vector<SurfaceHit> ReferenceSurface::closestPoints(
+    const std::vector<std::array<double, 3>>& queries) const {
+  std::vector<SurfaceHit> hits(queries.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, queries.size(), 64),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i < r.end(); ++i)
+                        hits[i] = closestPoint(queries[i]);
+                    });
+  return hits;
+}
+
+}  // namespace voxremesh

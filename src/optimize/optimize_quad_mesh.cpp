@@ -1,0 +1,94 @@
+// optimizeQuadMesh: the optimisation steps in order, with per-step timings.
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "voxremesh/errors.h"
+#include "voxremesh/optimize.h"
+
+namespace voxremesh {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void checkOptimizeSettings(const OptimizeSettings& s) {
+  checkQualitySettings(s.quality);
+  if (!std::isfinite(s.warpingDeg) || s.warpingDeg < 0.0 || s.warpingDeg > 180.0)
+    throw SettingError("optimize: warpingDeg " + std::to_string(s.warpingDeg) +
+                       " is outside 0 .. 180");
+  if (s.warpingIterations < 0 || s.relaxIterations < 0)
+    throw SettingError("optimize: iteration counts must be >= 0");
+  if (!(s.relaxDamping > 0.0 && s.relaxDamping <= 0.7))
+    throw SettingError("optimize: relaxDamping " + std::to_string(s.relaxDamping) +
+                       " is outside (0, 0.7]");
+  if (!std::isfinite(s.shortEdgeFactor) || s.shortEdgeFactor < 0.0 || s.shortEdgeFactor > 1.0)
+    throw SettingError("optimize: shortEdgeFactor " + std::to_string(s.shortEdgeFactor) +
+                       " is outside 0 .. 1");
+  if (!(s.warpingMoveFactor > 0.0))
+    throw SettingError("optimize: warpingMoveFactor " + std::to_string(s.warpingMoveFactor) +
+                       " is not > 0");
+  if (!std::isfinite(s.zeroAreaFactor) || s.zeroAreaFactor < 0.0)
+    throw SettingError("optimize: zeroAreaFactor " + std::to_string(s.zeroAreaFactor) +
+                       " is not finite and >= 0");
+}
+
+}  // namespace
+
+void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
+                      const OptimizeSettings& settings, OptimizeStats* stats) {
+  checkOptimizeSettings(settings);
+  if (original.empty()) throw std::invalid_argument("optimizeQuadMesh: empty original surface");
+  const Clock::time_point start = Clock::now();
+  OptimizeStats s;
+  QualitySettings quality = settings.quality;
+  if (quality.targetSize == 0.0) quality.targetSize = medianEdgeLength(mesh);
+  CleanupSettings cleanupSettings;
+  cleanupSettings.zeroArea = settings.zeroAreaFactor * quality.targetSize * quality.targetSize;
+  cleanupSettings.shortEdge = settings.shortEdgeFactor * quality.targetSize;
+  cleanupSettings.foldedCurves = settings.collapseFoldedCurves;
+
+  auto cleanUp = [&] {
+    const Clock::time_point t = Clock::now();
+    const CleanupResult r = cleanUpMesh(mesh, cleanupSettings);
+    s.cleanup.zeroAreaFaces += r.zeroAreaFaces;
+    s.cleanup.shortEdges += r.shortEdges;
+    s.cleanup.duplicateFaces += r.duplicateFaces;
+    s.cleanup.valence2Points += r.valence2Points;
+    s.cleanup.foldedCurveFaces += r.foldedCurveFaces;
+    s.cleanupSeconds += secondsSince(t);
+  };
+  auto relax = [&] {
+    const Clock::time_point t = Clock::now();
+    relaxMesh(mesh, original, settings.relaxIterations, settings.relaxDamping);
+    s.relaxSeconds += secondsSince(t);
+  };
+
+  cleanUp();
+  if (settings.collapseRhombic) {
+    const Clock::time_point t = Clock::now();
+    s.rhombicCollapsed = collapseRhombicQuads(mesh, &original);
+    s.rhombicSeconds = secondsSince(t);
+    cleanUp();
+  }
+  relax();
+  if (settings.mergeTriangles && quality.targetSize > 0.0) {
+    const Clock::time_point t = Clock::now();
+    s.trianglesMerged = mergeTrianglePairs(mesh, quality);
+    s.mergeSeconds = secondsSince(t);
+    relax();
+  }
+  const Clock::time_point t = Clock::now();
+  s.warping = removeWarping(mesh, settings.warpingDeg, settings.warpingIterations,
+                            settings.warpingMoveFactor * quality.targetSize);
+  s.warpingSeconds = secondsSince(t);
+  s.totalSeconds = secondsSince(start);
+  if (stats) *stats = s;
+}
+
+}  // namespace voxremesh

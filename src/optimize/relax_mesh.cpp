@@ -1,0 +1,149 @@
+// relaxMesh: tangential smoothing projected on the original surface, curve points on their
+// curves, corners fixed.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "optimize/mesh_topology.h"
+#include "voxremesh/optimize.h"
+
+namespace voxremesh {
+
+using namespace geom;  // NOLINT: the vector operators
+
+namespace {
+
+/// A Free boundary point where the boundary turns by more than this many degrees stays put (as
+/// SheetSettings::cornerAngleDeg makes such points Corners where the sheets are built).
+constexpr double kBoundaryCornerDeg = 30.0;
+
+/// The largest stable damping (see relaxMesh).
+constexpr double kMaxDamping = 0.7;
+
+/// The neighbours of v along boundary edges.
+std::vector<CornerIndex> boundaryNeighbours(const opt::Topology& t, CornerIndex v) {
+  std::vector<CornerIndex> result;
+  for (const std::uint32_t* w = t.nbrsBegin(v); w != t.nbrsEnd(v); ++w)
+    if (t.edgeFaces(v, *w) == 1) result.push_back(*w);
+  return result;
+}
+
+/// The neighbours of v along its curve: along boundary edges for a Boundary point or a Free point
+/// on the boundary, else along edges to points of the same curve or to Corners.
+std::vector<CornerIndex> curveNeighbours(const QuadMesh& mesh, const opt::Topology& t,
+                                         CornerIndex v) {
+  const PointRole role = opt::roleOf(mesh, v);
+  if (role == PointRole::Boundary || (role == PointRole::Free && t.boundary[v]))
+    return boundaryNeighbours(t, v);
+  std::vector<CornerIndex> result;
+  if (role == PointRole::Free || role == PointRole::Corner) return result;
+  for (const std::uint32_t* w = t.nbrsBegin(v); w != t.nbrsEnd(v); ++w) {
+    const PointConstraint& o = mesh.constraints[*w];
+    if (o.role == PointRole::Corner ||
+        (o.role != PointRole::Free && o.curve == mesh.constraints[v].curve))
+      result.push_back(*w);
+  }
+  return result;
+}
+
+/// The smoothing target of a Free point: the mean of (1) the area-weighted mean of its faces'
+/// centroids (equalises sizes) and (2) the mean over its quads (v, a, d, b) of a + b - d, the
+/// position that makes each quad a parallelogram (equalises the corner Jacobians and tapers);
+/// (1) alone without quads. The part of the move along the point's normal (the sum of its faces'
+/// normals) is removed.
+Vec3 freeTarget(const QuadMesh& mesh, const opt::Topology& t, CornerIndex v) {
+  Vec3 sum{0.0, 0.0, 0.0}, normal{0.0, 0.0, 0.0}, parallelogram{0.0, 0.0, 0.0};
+  double weight = 0.0;
+  int quads = 0;
+  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f) {
+    const auto& face = mesh.faces[*f];
+    const int n = cornerCount(face);
+    if (n == 4) {
+      std::size_t k = 0;
+      while (face[k] != v) ++k;
+      parallelogram = parallelogram + mesh.points[face[(k + 1) % 4]] +
+                      mesh.points[face[(k + 3) % 4]] - mesh.points[face[(k + 2) % 4]];
+      ++quads;
+    }
+    Vec3 centroid{0.0, 0.0, 0.0};
+    for (int k = 0; k < n; ++k)
+      centroid = centroid + mesh.points[face[static_cast<std::size_t>(k)]];
+    centroid = centroid * (1.0 / n);
+    const double area = opt::faceArea(mesh, face);
+    sum = sum + centroid * area;
+    weight += area;
+    const auto& p = mesh.points;
+    normal = normal + (n == 3 ? cross(p[face[1]] - p[face[0]], p[face[2]] - p[face[0]])
+                              : cross(p[face[2]] - p[face[0]], p[face[3]] - p[face[1]]));
+  }
+  if (!(weight > 0.0)) return mesh.points[v];
+  Vec3 target = sum * (1.0 / weight);
+  if (quads > 0) target = (target + parallelogram * (1.0 / quads)) * 0.5;
+  const Vec3 move = target - mesh.points[v];
+  const Vec3 unit = normalized(normal);
+  return mesh.points[v] + move - unit * dot(move, unit);
+}
+
+/// The closest point of `original` to q; `hint` is the face of the point's previous projection
+/// (updated), which only speeds the search up.
+Vec3 project(const ReferenceSurface& original, const Vec3& q, std::uint32_t& hint) {
+  const SurfaceHit hit = original.closestPoint(q, hint);
+  hint = hit.face;
+  return hit.point;
+}
+
+/// The new position of point v in one relaxation step (see relaxMesh); `along` holds its curve
+/// or boundary neighbours, `hint` the face of its previous projection on `original`.
+Vec3 relaxed(const QuadMesh& mesh, const opt::Topology& t, const ReferenceSurface& original,
+             const std::vector<CornerIndex>& along, CornerIndex v, double damping,
+             std::uint32_t& hint) {
+  const Vec3& p = mesh.points[v];
+  const PointRole role = opt::roleOf(mesh, v);
+  if (t.faceCount(v) == 0 || role == PointRole::Corner) return p;
+  if (role == PointRole::Free && !t.boundary[v])
+    return project(original, p + (freeTarget(mesh, t, v) - p) * damping, hint);
+  if (along.size() != 2) return role == PointRole::Free ? p : opt::constrainedPosition(mesh, v, p);
+  const Vec3& a = mesh.points[along[0]];
+  const Vec3& b = mesh.points[along[1]];
+  Vec3 move = (a + b) * 0.5 - p;
+  if (role == PointRole::Free) {
+    // A Free boundary point slides along the boundary only, so that the mesh does not shrink;
+    // where the boundary turns by more than kBoundaryCornerDeg it is a corner and stays.
+    if (angleDeg(p - a, b - p) > kBoundaryCornerDeg) return p;
+    const Vec3 tangent = normalized(b - a);
+    return project(original, p + tangent * (dot(move, tangent) * damping), hint);
+  }
+  return opt::constrainedPosition(mesh, v, p + move * damping);
+}
+
+}  // namespace
+
+void relaxMesh(QuadMesh& mesh, const ReferenceSurface& original, int iterations, double damping) {
+  if (original.empty()) throw std::invalid_argument("relaxMesh: the original surface is empty");
+  if (iterations < 0) throw std::invalid_argument("relaxMesh: negative iteration count");
+  if (!(damping > 0.0 && damping <= kMaxDamping))
+    throw std::invalid_argument("relaxMesh: damping " + std::to_string(damping) +
+                                " is not in (0, 0.7]");
+  opt::checkMesh(mesh);
+  const opt::Topology topology = opt::buildTopology(mesh);
+  const std::size_t count = mesh.points.size();
+  std::vector<std::vector<CornerIndex>> along(count);
+  for (CornerIndex v = 0; v < count; ++v) along[v] = curveNeighbours(mesh, topology, v);
+  std::vector<Vec3> next(count);
+  std::vector<std::uint32_t> hints(count, kNoCorner);
+  for (int iteration = 0; iteration < iterations; ++iteration) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 64),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t v = r.begin(); v < r.end(); ++v)
+                          next[v] = relaxed(mesh, topology, original, along[v],
+                                            static_cast<CornerIndex>(v), damping, hints[v]);
+                      });
+    mesh.points.swap(next);
+  }
+}
+
+}  // namespace voxremesh

@@ -1,0 +1,172 @@
+// elementQualities and assessQuality: the metrics of every element and the per-mesh summary.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "voxremesh/errors.h"
+#include "voxremesh/quality.h"
+
+namespace voxremesh {
+
+namespace {
+
+/// What a criterion measures, which elements it applies to, and its limit.
+struct CriterionRule {
+  const char* name;
+  double ElementQuality::*value;
+  bool quads;      ///< applies to quads
+  bool triangles;  ///< applies to triangles
+  bool isMaximum;
+  double QualitySettings::*limit;  ///< for MinLength: the factor of targetSize
+};
+
+/// The rules, in the order of Criterion.
+const CriterionRule kRules[kCriterionCount] = {
+    {"warping", &ElementQuality::warpingDeg, true, false, true, &QualitySettings::maxWarpingDeg},
+    {"aspect", &ElementQuality::aspectRatio, true, true, true, &QualitySettings::maxAspectRatio},
+    {"quad_min_angle", &ElementQuality::minAngleDeg, true, false, false,
+     &QualitySettings::minQuadAngleDeg},
+    {"quad_max_angle", &ElementQuality::maxAngleDeg, true, false, true,
+     &QualitySettings::maxQuadAngleDeg},
+    {"tria_min_angle", &ElementQuality::minAngleDeg, false, true, false,
+     &QualitySettings::minTriaAngleDeg},
+    {"tria_max_angle", &ElementQuality::maxAngleDeg, false, true, true,
+     &QualitySettings::maxTriaAngleDeg},
+    {"skew", &ElementQuality::skewDeg, true, true, true, &QualitySettings::maxSkewDeg},
+    {"jacobian_ratio", &ElementQuality::jacobianRatio, true, false, false,
+     &QualitySettings::minJacobianRatio},
+    {"scaled_jacobian", &ElementQuality::scaledJacobian, true, true, false,
+     &QualitySettings::minScaledJacobian},
+    {"taper", &ElementQuality::taper, true, false, true, &QualitySettings::maxTaper},
+    {"min_length", &ElementQuality::minLength, true, true, false,
+     &QualitySettings::minLengthFactor},
+};
+
+/// The metric a criterion looks at under the settings.
+double ElementQuality::*valueOf(Criterion c, const QualitySettings& s) {
+  if (c == Criterion::JacobianRatio && s.jacobianAtGaussPoints)
+    return &ElementQuality::jacobianRatioGauss;
+  return kRules[static_cast<int>(c)].value;
+}
+
+double limitOf(Criterion c, const QualitySettings& s) {
+  const double limit = s.*(kRules[static_cast<int>(c)].limit);
+  return c == Criterion::MinLength ? limit * s.targetSize : limit;
+}
+
+/// The value fails the limit (NaN always fails).
+bool fails(double value, double limit, bool isMaximum) {
+  if (std::isnan(value)) return true;
+  return isMaximum ? value > limit : value < limit;
+}
+
+}  // namespace
+
+const char* criterionName(Criterion c) {
+  return kRules[static_cast<int>(c)].name;
+}
+
+std::vector<ElementQuality> elementQualities(const QuadMesh& mesh) {
+  std::vector<ElementQuality> result(mesh.faces.size());
+  for (const auto& face : mesh.faces)
+    for (int k = 0; k < cornerCount(face); ++k)
+      if (face[static_cast<std::size_t>(k)] >= mesh.points.size())
+        throw std::invalid_argument("a face names point " +
+                                    std::to_string(face[static_cast<std::size_t>(k)]) +
+                                    " of a mesh with " + std::to_string(mesh.points.size()));
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.faces.size()),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t f = r.begin(); f < r.end(); ++f) {
+                        const auto& face = mesh.faces[f];
+                        const int n = cornerCount(face);
+                        std::array<std::array<double, 3>, 4> p{};
+                        for (int k = 0; k < n; ++k)
+                          p[static_cast<std::size_t>(k)] =
+                              mesh.points[face[static_cast<std::size_t>(k)]];
+                        result[f] = elementQuality(p, n);
+                      }
+                    });
+  return result;
+}
+
+std::uint32_t elementFailures(const ElementQuality& quality, int corners,
+                              const QualitySettings& settings) {
+  if (corners != 3 && corners != 4)
+    throw std::invalid_argument("an element has 3 or 4 corners, not " + std::to_string(corners));
+  std::uint32_t failures = 0;
+  for (int c = 0; c < kCriterionCount; ++c) {
+    const auto criterion = static_cast<Criterion>(c);
+    const CriterionRule& r = kRules[c];
+    if (corners == 4 ? !r.quads : !r.triangles) continue;
+    if (fails(quality.*valueOf(criterion, settings), limitOf(criterion, settings), r.isMaximum))
+      failures |= 1u << c;
+  }
+  return failures;
+}
+
+bool QualityReport::passes() const {
+  if (failingAny > 0 || triangleShare > settings.maxTriangleShare) return false;
+  return !distance || distance->max() <= distanceLimit;
+}
+
+QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& settings,
+                            const QuadMesh* original) {
+  checkQualitySettings(settings);
+  QualityReport report;
+  report.settings = settings;
+  if (report.settings.targetSize == 0.0) {
+    report.settings.targetSize = medianEdgeLength(mesh);
+    if (!(report.settings.targetSize > 0.0))
+      throw SettingError("quality: no target size given and the mesh has no edge to take one from");
+  }
+  const QualitySettings& s = report.settings;
+  report.elementValues = elementQualities(mesh);
+  report.elements = mesh.faces.size();
+  report.elementFailures.assign(report.elements, 0);
+  for (int c = 0; c < kCriterionCount; ++c) {
+    const auto criterion = static_cast<Criterion>(c);
+    const CriterionRule& r = kRules[c];
+    CriterionSummary summary;
+    summary.criterion = criterion;
+    summary.limit = limitOf(criterion, s);
+    summary.isMaximum = r.isMaximum;
+    bool first = true;
+    for (std::size_t f = 0; f < report.elements; ++f) {
+      const bool quad = cornerCount(mesh.faces[f]) == 4;
+      if (quad ? !r.quads : !r.triangles) continue;
+      const double value = report.elementValues[f].*valueOf(criterion, s);
+      ++summary.applies;
+      if (first || (r.isMaximum ? value > summary.worst : value < summary.worst) ||
+          std::isnan(value)) {
+        summary.worst = value;
+        first = false;
+      }
+      if (fails(value, summary.limit, r.isMaximum)) {
+        ++summary.failing;
+        report.elementFailures[f] |= 1u << c;
+      }
+    }
+    summary.share = report.elements ? double(summary.failing) / double(report.elements) : 0.0;
+    report.criteria.push_back(summary);
+  }
+  for (std::size_t f = 0; f < report.elements; ++f) {
+    if (cornerCount(mesh.faces[f]) == 4)
+      ++report.quads;
+    else
+      ++report.triangles;
+    if (report.elementFailures[f] != 0) ++report.failingAny;
+  }
+  if (report.elements) {
+    report.failingAnyShare = double(report.failingAny) / double(report.elements);
+    report.triangleShare = double(report.triangles) / double(report.elements);
+  }
+  report.distanceLimit = s.maxDistanceFactor * s.targetSize;
+  if (original) report.distance = surfaceDistance(mesh, *original);
+  return report;
+}
+
+}  // namespace voxremesh
