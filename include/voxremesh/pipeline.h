@@ -19,6 +19,7 @@
 
 #include "voxremesh/deck_assembly.h"
 #include "voxremesh/extract.h"
+#include "voxremesh/optimize.h"
 
 #include "voxremesh/fe_model.h"
 #include "voxremesh/sheets.h"
@@ -40,6 +41,10 @@ struct RemeshSettings {
   VolumeSettings volume;
   /// Extraction settings (extract.h defaults).
   ExtractSettings extract;
+  /// Quad optimisation after extraction (optimize.h); off leaves the extracted mesh as it is.
+  bool optimize = true;
+  /// Optimisation settings; the quality target size is set per part to the part's target size.
+  OptimizeSettings optimizeSettings;
   /// Threads for the parts and their stages; 0 (the default) means all cores.
   int threads = 0;
 };
@@ -89,8 +94,9 @@ struct RemeshedPart {
   PartPlan plan;
   std::size_t quads = 0, trias = 0;  ///< of the new mesh
   ExtractStats extract;
-  double volumeSeconds = 0.0;   ///< sheets and volume
-  double extractSeconds = 0.0;  ///< extraction
+  double volumeSeconds = 0.0;    ///< sheets and volume
+  double extractSeconds = 0.0;   ///< extraction
+  double optimizeSeconds = 0.0;  ///< quad optimisation
 };
 
 /// What remeshDeck did.

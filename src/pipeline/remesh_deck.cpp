@@ -9,12 +9,15 @@
 #include <mutex>
 #include <stdexcept>
 #include <unordered_map>
+
 #include <unordered_set>
+#include "voxremesh/reference_surface.h"
 
 #include "io/atomic_file.h"
 #include "json/json.h"
 #include "voxremesh/errors.h"
 #include "voxremesh/pipeline.h"
+#include "voxremesh/reference_surface.h"
 
 namespace voxremesh {
 
@@ -118,6 +121,15 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
         meshes[i] = extractQuadMesh(volume, settings.extract, &part.extract);
         part.extractSeconds = since(stageStart);
         meshes[i].part = plans[i].part;
+        if (settings.optimize) {
+          tell("optimize", plans[i].part, false);
+          stageStart = std::chrono::steady_clock::now();
+          const ReferenceSurface original(quadMeshFromModel(models[i], plans[i].part));
+          OptimizeSettings optimizeSettings = settings.optimizeSettings;
+          optimizeSettings.quality.targetSize = plans[i].targetSize;
+          optimizeQuadMesh(meshes[i], original, optimizeSettings);
+          part.optimizeSeconds = since(stageStart);
+        }
         for (const auto& face : meshes[i].faces)
           (cornerCount(face) == 4 ? part.quads : part.trias)++;
       } catch (...) {
