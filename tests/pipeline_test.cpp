@@ -59,16 +59,17 @@ TEST(Pipeline, PlansPartsAndTargetSizes) {
   EXPECT_THROW(choosePart(model, 30, "deck", "part="), std::runtime_error);
 }
 
-TEST(Pipeline, PartVolumeUsesThePlannedSize) {
+TEST(Pipeline, PartVolumesUseThePlannedSize) {
   const FeModel model =
       readDeck(std::filesystem::path(VOXREMESH_SOURCE_DIR) / "tools" / "samples" / "hat_rail.k");
   RemeshSettings settings;
   settings.targetSize = 8;
   const std::vector<PartPlan> plans = planRemesh(model, settings);
   ASSERT_FALSE(plans.empty());
-  const Volume volume = partVolume(model, plans[0], settings);
-  EXPECT_DOUBLE_EQ(volume.info().voxelSize, 8.0);
-  EXPECT_FALSE(volume.featureLines().empty());
+  const std::vector<SheetVolume> volumes = partVolumes(model, plans[0], settings);
+  ASSERT_EQ(volumes.size(), 1u);
+  EXPECT_DOUBLE_EQ(volumes[0].volume.info().voxelSize, 8.0);
+  EXPECT_FALSE(volumes[0].volume.featureLines().empty());
 }
 
 TEST(Progress, DrawsOnlyWhenEnabled) {

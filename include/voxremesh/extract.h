@@ -14,6 +14,12 @@
 // the positive side. Cells crossed by a boundary loop of the volume (closed cube) get no vertex
 // either, so that the mesh stops short of every boundary, holes of one element included.
 //
+// Junctions. Where a boundary loop runs along a junction curve of the volume (a T-junction with
+// another sheet of the part, a seam with another part), the boundary strip's nodes there are the
+// ones the junction curve prescribes, computed from the curve alone (src/extract/junction_nodes.h:
+// about one per voxel size, through the curve's corners), with bit-identical coordinates and role
+// Junction: the meshes extracted on every side of the junction share those nodes once welded.
+//
 // The work runs over the active leaves of the sdf with TBB (tree::LeafManager; counts, prefix
 // sums, fill), like OpenVDB's VolumeToMesh; the output does not depend on the thread count.
 #pragma once
@@ -47,6 +53,7 @@ struct ExtractStats {
   std::uint64_t stripQuads = 0;       ///< quads of the rebuilt boundary strip
   std::uint64_t stripTriangles = 0;   ///< triangles of the rebuilt boundary strip
   std::uint64_t snappedVertices = 0;  ///< vertices moved onto feature lines or points
+  std::uint64_t junctionNodes = 0;    ///< boundary nodes placed on junction curves
 };
 
 /// Extracts the quad mesh of a volume (see the top of the file).

@@ -7,8 +7,8 @@
 //   -> extractQuadMesh                  (extract.h, issue 4)
 //   -> optimisation -> quality report   (optimize.h, quality.h, issue 5)
 // and then replacePartMeshes (deck_assembly.h) puts all new meshes back into the deck in the
-// order of planRemesh. Optimisation and the quality report are not on this branch yet: remeshDeck
-// puts the extracted meshes back as they are until they land.
+// order of planRemesh. Each sheet of a part is voxelised, extracted and optimised on its own
+// (partVolumes); the sheets' meshes are then joined at their junction nodes (joinAtJunctions).
 #pragma once
 
 #include <cstddef>
@@ -83,11 +83,21 @@ double defaultTargetSize(const FeModel& model, Id part);
 /// defaultTargetSize.
 std::vector<PartPlan> planRemesh(const FeModel& model, const RemeshSettings& settings);
 
-/// The first two stages for one planned part: its sheets, written into a volume whose voxel size
-/// is the plan's target size.
+/// One sheet of a part and the volume it was written into.
+struct SheetVolume {
+  Sheet sheet;
+  Volume volume;
+};
+
+/// The first two stages for one planned part: its sheets, each written into a volume of its own
+/// whose voxel size is the plan's target size. (Sheets that meet along a junction curve, like the
+/// disc and the rim of a wheel at their T-junction, have no common inside and outside, so one
+/// signed distance cannot hold them together; extraction then puts the same nodes on the
+/// junction curve on every side.)
 /// Throws as buildSheets and buildVolume; std::runtime_error when no shell of the part has an
 /// area.
-Volume partVolume(const FeModel& model, const PartPlan& plan, const RemeshSettings& settings);
+std::vector<SheetVolume> partVolumes(const FeModel& model, const PartPlan& plan,
+                                     const RemeshSettings& settings);
 
 /// What remeshDeck did to one part.
 struct RemeshedPart {

@@ -80,4 +80,12 @@ FeModel modelFromQuadMesh(const QuadMesh& mesh, Id part = 1);
 /// renumbers the faces. Preconditions: every face names existing points.
 void eraseUnusedPoints(QuadMesh& mesh);
 
+/// Joins the meshes of the sheets of one part into one mesh: points, constraints, faces and
+/// curves concatenated in the given order (curve indices and faces renumbered), then points with
+/// role Junction and bit-identical coordinates merged into the first of them, so that sheets
+/// extracted separately share their nodes along the junction curves again (a T-junction edge
+/// then has three faces). The part is the first mesh's. Preconditions: every face names existing
+/// points; constraints empty or one per point.
+QuadMesh joinAtJunctions(const std::vector<QuadMesh>& meshes);
+
 }  // namespace voxremesh

@@ -120,6 +120,10 @@ class Volume {
   const std::vector<VolumeCurve>& boundaryLoops() const;
   /// Feature points of all sheets (world space).
   const std::vector<std::array<double, 3>>& featurePoints() const;
+  /// Junction curves of all sheets (world space): where a sheet met another sheet of its part
+  /// or another part. Extraction gives the nodes it puts on them the same positions on every
+  /// side (see extract.h), so that the meshes of both sides share nodes there.
+  const std::vector<VolumeCurve>& junctionCurves() const;
 
   /// Internal access for the stages that work on the grids (src/volume/volume_grids.h).
   Impl& impl() { return *impl_; }
@@ -156,7 +160,9 @@ VolumeEstimate estimateVolume(const std::vector<Sheet>& sheets, double voxelSize
 void checkVolumeSettings(const VolumeSettings& settings);
 
 /// Writes the sheets of one part into a volume: the signed distance grid, the invalid and
-/// feature masks, and the sheets' feature lines, feature points and boundary loops.
+/// feature masks, and the sheets' feature lines, feature points, boundary loops and junction
+/// curves. Sheets that meet along junction curves (a T-junction) have no consistent sign where
+/// they meet: give each of them a volume of its own (remeshDeck does).
 /// Several sheets are united: per voxel the closest sheet wins (exact ties: the lower sheet
 /// index, then the lower face index). The result does not depend on the number of threads.
 /// Parameters: sheets - manifold, consistently oriented sheets of ONE part; settings - see
@@ -205,6 +211,7 @@ struct VolumeReport {
   std::size_t featureLines = 0;
   std::size_t featurePoints = 0;
   std::size_t boundaryLoops = 0;
+  std::size_t junctionCurves = 0;
 };
 
 /// Inspects the grids of a volume. Throws std::invalid_argument for an empty volume.

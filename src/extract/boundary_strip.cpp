@@ -179,6 +179,69 @@ struct OuterNode {
   double param = 0.0;
   std::size_t fromDual = std::numeric_limits<std::size_t>::max();
   bool corner = false;
+  std::size_t junctionNode = std::numeric_limits<std::size_t>::max();  ///< index of a JunctionNode
+};
+
+/// A node the junction curves prescribe on the target loop.
+struct JunctionNode {
+  double param = 0.0;  ///< arc length on the target loop, in [0, length)
+  std::array<double, 3> point{};
+};
+
+/// Which segments of the target loop lie on junction curves, and the nodes on them.
+struct JunctionStretches {
+  std::vector<char> segment;        ///< per target segment: on a junction curve
+  std::vector<JunctionNode> nodes;  ///< ascending param, no repeats
+  bool any = false;
+
+  JunctionStretches(const TargetLoop& target, const PolylineParam& loop,
+                    const JunctionNodes& junctions) {
+    const std::size_t count = target.points.size();
+    segment.assign(count, 0);
+    if (junctions.empty()) return;
+    std::vector<const JunctionEdgeNodes*> edges(count, nullptr);
+    for (std::size_t s = 0; s < count; ++s) {
+      if (target.segmentCurve[s] == kNoCurve) continue;
+      edges[s] = junctions.edge(target.points[s], target.points[(s + 1) % count]);
+      segment[s] = edges[s] != nullptr;
+      any = any || segment[s];
+    }
+    const double length = loop.length();
+    for (std::size_t s = 0; s < count; ++s) {
+      if (!segment[s]) continue;
+      const double s0 = loop.vertexParam(s), s1 = loop.vertexParam(s + 1);
+      const bool forward = edges[s]->from == target.points[s];
+      const std::size_t k = edges[s]->along.size();
+      for (std::size_t j = 0; j < k; ++j) {
+        const std::size_t n = forward ? j : k - 1 - j;
+        const double t = forward ? edges[s]->along[n] : 1.0 - edges[s]->along[n];
+        nodes.push_back({s0 + t * (s1 - s0), edges[s]->points[n]});
+      }
+      // The segment's ends: nodes of the curve, and the ends of a stretch.
+      for (const std::size_t end : {s, s + 1}) {
+        const std::size_t other = end == s ? (s + count - 1) % count : (s + 1) % count;
+        const std::array<double, 3>& p = target.points[end % count];
+        if (junctions.isNodePoint(p) || !segment[other])
+          nodes.push_back({std::fmod(loop.vertexParam(end), length), p});
+      }
+    }
+    std::sort(nodes.begin(), nodes.end(), [](const JunctionNode& a, const JunctionNode& b) {
+      return a.param < b.param || (a.param == b.param && a.point < b.point);
+    });
+    nodes.erase(std::unique(nodes.begin(), nodes.end(),
+                            [](const JunctionNode& a, const JunctionNode& b) {
+                              return a.point == b.point;
+                            }),
+                nodes.end());
+  }
+
+  /// True when arc length v (in [0, length)) lies on a junction stretch, its ends included.
+  bool contains(const TargetLoop& target, const PolylineParam& loop, double v) const {
+    if (!any) return false;
+    const std::size_t s = target.segmentAt(loop, v);
+    const std::size_t count = target.points.size();
+    return segment[s] || (v <= loop.vertexParam(s) && segment[(s + count - 1) % count]);
+  }
 };
 
 /// Builds the strip between dual loop `dual` (point indices) and original loop `loop`.
@@ -211,8 +274,10 @@ void addFarVertices(const PolylineParam& loop, double s0, double s1, double tole
 }
 
 void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
-                const TargetLoop& target, double tolerance, StripStats& stats) {
+                const TargetLoop& target, const JunctionNodes& junctions, double tolerance,
+                StripStats& stats) {
   const PolylineParam loop(target.points, true);
+  const JunctionStretches stretches(target, loop, junctions);
   const std::vector<double>& cornerParams = target.cornerParams;
   const std::size_t m = dualLoop.size();
   const double length = loop.length();
@@ -255,13 +320,24 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
     const double from = loop.vertexParam(segment), to = loop.vertexParam(segment + 1);
     u[i] += (v - from < to - v ? from - v : to - v);
   }
+  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+  // Arc lengths relative to `base` and back; whether one lies on a junction stretch.
+  auto relative = [&](double v) {
+    const double c = std::fmod(v - base, length);
+    return c < 0.0 ? c + length : c;
+  };
+  auto onJunction = [&](double c) {
+    double v = std::fmod(c + base, length);
+    if (v < 0.0) v += length;
+    return stretches.contains(target, loop, v);
+  };
   // Outer nodes: one per dual vertex; corners replace the nearest one where the order allows.
   std::vector<OuterNode> outer(m);
   for (std::size_t i = 0; i < m; ++i) outer[i] = {u[i], i, false};
   std::vector<OuterNode> extra;
   for (double cornerParam : cornerParams) {
-    double c = std::fmod(cornerParam - base, length);
-    if (c < 0.0) c += length;
+    const double c = relative(cornerParam);
+    if (onJunction(c)) continue;  // the junction's own nodes are the nodes there
     const std::size_t next = std::size_t(std::upper_bound(u.begin(), u.end(), c) - u.begin());
     const std::size_t previous = next == 0 ? m - 1 : next - 1;
     const double dPrevious = next == 0 ? c + length - u[m - 1] : c - u[previous];
@@ -278,7 +354,34 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
       extra.push_back({c, std::numeric_limits<std::size_t>::max(), true});
     }
   }
-  std::vector<OuterNode> nodes = outer;
+  // On junction stretches the nodes the junction curves prescribe replace the dual vertices' own:
+  // each pairs with the closest dual vertex whose node it replaces, if any.
+  std::vector<OuterNode> nodes;
+  std::vector<std::size_t> replaced;
+  for (const OuterNode& node : outer) {
+    if (!node.corner && onJunction(node.param)) {
+      replaced.push_back(node.fromDual);
+    } else {
+      nodes.push_back(node);
+    }
+  }
+  if (stretches.any) {
+    std::vector<OuterNode> fixed;
+    for (std::size_t k = 0; k < stretches.nodes.size(); ++k)
+      fixed.push_back({relative(stretches.nodes[k].param), kNone, false, k});
+    std::sort(fixed.begin(), fixed.end(),
+              [](const OuterNode& x, const OuterNode& y) { return x.param < y.param; });
+    std::vector<double> gap(fixed.size(), std::numeric_limits<double>::infinity());
+    for (const std::size_t i : replaced) {
+      const double v = outer[i].param;
+      auto it = std::lower_bound(fixed.begin(), fixed.end(), v,
+                                 [](const OuterNode& x, double p) { return x.param < p; });
+      if (it == fixed.end() || (it != fixed.begin() && v - (it - 1)->param < it->param - v)) --it;
+      const std::size_t j = std::size_t(it - fixed.begin());
+      if (std::abs(it->param - v) < gap[j]) gap[j] = std::abs(it->param - v), fixed[j].fromDual = i;
+    }
+    nodes.insert(nodes.end(), fixed.begin(), fixed.end());
+  }
   for (const OuterNode& e : extra) nodes.push_back(e);
   std::stable_sort(nodes.begin(), nodes.end(),
                    [](const OuterNode& x, const OuterNode& y) { return x.param < y.param; });
@@ -293,17 +396,23 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
       addFarVertices(loop, s0, s1, tolerance, far);
     }
     for (double v : far) {
-      double c = std::fmod(v - base, length);
-      if (c < 0.0) c += length;
-      nodes.push_back({c, std::numeric_limits<std::size_t>::max(), false});
+      const double c = relative(v);
+      if (!onJunction(c)) nodes.push_back({c, kNone, false});
     }
     std::stable_sort(nodes.begin(), nodes.end(),
                      [](const OuterNode& x, const OuterNode& y) { return x.param < y.param; });
   }
-  // Node 0 must pair with dual vertex 0 (param 0, or a corner moved there).
+  // The zip starts at the first node paired with a dual vertex, and the dual loop at that vertex.
   const auto first = std::find_if(nodes.begin(), nodes.end(),
-                                  [](const OuterNode& node) { return node.fromDual == 0; });
+                                  [&](const OuterNode& node) { return node.fromDual != kNone; });
+  if (first == nodes.end())
+    throw std::runtime_error("extraction: no node of the boundary strip at " +
+                             describePoint(loop.point(0)) + " pairs with the dual mesh");
+  const std::size_t shift = first->fromDual;
   std::rotate(nodes.begin(), first, nodes.end());
+  for (OuterNode& node : nodes)
+    if (node.fromDual != kNone) node.fromDual = (node.fromDual + m - shift) % m;
+  std::rotate(a.begin(), a.begin() + std::ptrdiff_t(shift), a.end());
 
   const std::size_t n = nodes.size();
   std::vector<std::uint32_t> b(n);
@@ -312,6 +421,19 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
     double v = std::fmod(nodes[j].param + base, length);
     if (v < 0.0) v += length;
     std::size_t segment = target.segmentAt(loop, v);
+    if (nodes[j].junctionNode != kNone) {  // exact, as on every other side of the junction
+      const std::array<double, 3>& point = stretches.nodes[nodes[j].junctionNode].point;
+      b[j] = static_cast<std::uint32_t>(mesh.points.size());
+      mesh.points.push_back(point);
+      std::uint32_t curve = target.segmentCurve[segment];
+      if (curve == kNoCurve) {
+        const std::size_t count = target.points.size();
+        curve = target.segmentCurve[(segment + count - 1) % count];
+      }
+      mesh.constraints.push_back({PointRole::Junction, curve});
+      ++stats.junctionNodes;
+      continue;
+    }
     // A node at a vertex of the loop (a corner, a bridge end) takes its exact coordinates, so
     // that the two visits of a bridge end become one node when the mesh is welded.
     for (std::size_t end : {segment, (segment + 1) % target.points.size()}) {
@@ -356,7 +478,7 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
 
 StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& loopCurves,
                                 const std::vector<std::array<double, 3>>& corners,
-                                double tolerance) {
+                                const JunctionNodes& junctions, double tolerance, double reach) {
   StripStats stats;
   if (mesh.constraints.size() != mesh.points.size()) mesh.constraints.resize(mesh.points.size());
   std::vector<PolylineParam> loops;
@@ -364,13 +486,14 @@ StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>
   const DualBoundary boundary = dualBoundary(mesh);
   const std::vector<std::vector<std::uint32_t>>& dualLoops = boundary.loops;
 
-  // Votes: for every dual loop, how many of its vertices are closest to each original loop.
+  // Votes: for every dual loop, how many of its vertices are closest to each original loop
+  // (within `reach`: a dual loop farther from every original loop is a gap inside the surface).
   std::vector<std::vector<std::size_t>> votes(dualLoops.size(),
                                               std::vector<std::size_t>(loops.size(), 0));
   for (std::size_t d = 0; d < dualLoops.size(); ++d) {
     for (std::uint32_t v : dualLoops[d]) {
       const Vec3d p = toVec(mesh.points[v]);
-      double best = std::numeric_limits<double>::infinity();
+      double best = reach;
       std::size_t bestLoop = loops.size();
       for (std::size_t l = 0; l < loops.size(); ++l) {
         if (loops[l].boxDistance(p) >= best) continue;
@@ -436,7 +559,8 @@ StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>
 
   for (std::size_t d = 0; d < dualLoops.size(); ++d) {
     if (loopsOfDual[d].empty()) continue;
-    buildStrip(mesh, dualLoops[d], joinLoops(mesh, loopsOfDual[d], corners), tolerance, stats);
+    buildStrip(mesh, dualLoops[d], joinLoops(mesh, loopsOfDual[d], corners), junctions, tolerance,
+               stats);
   }
   return stats;
 }

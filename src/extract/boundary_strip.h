@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "extract/junction_nodes.h"
 #include "voxremesh/quad_mesh.h"
 
 namespace voxremesh::extract {
@@ -15,9 +16,10 @@ namespace voxremesh::extract {
 struct StripStats {
   std::uint64_t quads = 0;
   std::uint64_t triangles = 0;
-  std::uint64_t removedFaces = 0;  ///< faces of stray dual pieces removed (see below)
+  std::uint64_t removedFaces = 0;     ///< faces of stray dual pieces removed (see below)
   std::uint64_t filledQuads = 0;      ///< quads closing gaps inside the dual mesh
   std::uint64_t filledTriangles = 0;  ///< triangles closing gaps inside the dual mesh
+  std::uint64_t junctionNodes = 0;    ///< nodes placed where the junction curves prescribe
 };
 
 /// Rebuilds the boundary of `mesh` up to the original boundary loops.
@@ -34,8 +36,15 @@ struct StripStats {
 ///                    mesh on their left, as the original loops do)
 /// @param loopCurves  the indices into mesh.curves of the original boundary loops (closed)
 /// @param corners     feature points; those equal to a vertex of a loop are its corners
+/// @param junctions   the nodes of the junction curves: on loop edges that are junction edges
+///                    these replace the nodes of the dual vertices (each pairing with the closest
+///                    dual vertex whose node it replaces; triangles where counts differ), take
+///                    the exact prescribed coordinates and get role Junction; no corner or extra
+///                    node is added there
 /// @param tolerance   where the chord between two strip nodes misses a vertex of the loop by
 ///                    more than this, the vertex becomes a node too (with a triangle)
+/// @param reach       a dual vertex votes only for original loops closer than this (the dual mesh
+///                    stops within a few voxels of the boundary; farther vertices belong to gaps)
 /// A boundary loop of a kept piece that no original loop takes is a gap inside the surface and is
 /// closed by a fan of quads. Where one dual loop takes several original loops (the dual mesh could
 /// not pass between two holes, or a hole and the outer contour), they are joined by bridges at
@@ -44,6 +53,6 @@ struct StripStats {
 /// no dual loop to join.
 StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& loopCurves,
                                 const std::vector<std::array<double, 3>>& corners,
-                                double tolerance);
+                                const JunctionNodes& junctions, double tolerance, double reach);
 
 }  // namespace voxremesh::extract

@@ -51,6 +51,11 @@ std::uint64_t weldCoincidentPoints(QuadMesh& mesh) {
   return dropped;
 }
 
+/// The dual mesh stops within about two voxels of a boundary loop (cells touching the loop or an
+/// invalid voxel emit nothing); a dual boundary vertex farther than this from every loop lies on a
+/// gap inside the surface.
+constexpr double kStripReachVoxels = 4.0;
+
 MeshCurve toMeshCurve(const VolumeCurve& curve, PointRole role) {
   return {curve.points, curve.closed, role};
 }
@@ -100,10 +105,14 @@ QuadMesh extractQuadMesh(const Volume& volume, const ExtractSettings& settings,
                                 lineCurves, volume.featurePoints());
   }
   if (rebuild) {
-    const extract::StripStats strip = extract::rebuildBoundaryStrip(
-        mesh, loopCurves, volume.featurePoints(), 0.2 * volume.info().voxelSize);
+    const double voxel = volume.info().voxelSize;
+    const extract::JunctionNodes junctions(volume.junctionCurves(), voxel, 0.2 * voxel);
+    const extract::StripStats strip =
+        extract::rebuildBoundaryStrip(mesh, loopCurves, volume.featurePoints(), junctions,
+                                      0.2 * voxel, kStripReachVoxels * voxel);
     counts.stripQuads = strip.quads;
     counts.stripTriangles = strip.triangles;
+    counts.junctionNodes = strip.junctionNodes;
   }
   weldCoincidentPoints(mesh);
   eraseUnusedPoints(mesh);

@@ -33,7 +33,7 @@ struct Segment {
 template <typename F>
 void forEachCell(const Vec3d& lo, const Vec3d& hi, F&& f) {
   constexpr double kEps = 1e-6;
-  const Coord from(int(std::floor(lo[0] - kEps)) - 0, int(std::floor(lo[1] - kEps)),
+  const Coord from(int(std::floor(lo[0] - kEps)), int(std::floor(lo[1] - kEps)),
                    int(std::floor(lo[2] - kEps)));
   const Coord to(int(std::floor(hi[0] + kEps)), int(std::floor(hi[1] + kEps)),
                  int(std::floor(hi[2] + kEps)));
@@ -47,6 +47,61 @@ Vec3d closestOnSegment(const Segment& s, const Vec3d& p) {
   const double len2 = ab.lengthSqr();
   const double t = len2 > 0.0 ? std::clamp((p - s.a).dot(ab) / len2, 0.0, 1.0) : 0.0;
   return s.a + ab * t;
+}
+
+/// Squared distance a point moved when it was snapped.
+double snapMove(const QuadMesh& mesh, const std::vector<std::array<double, 3>>& before,
+                CornerIndex v) {
+  double sum = 0.0;
+  for (std::size_t c = 0; c < 3; ++c)
+    sum += (mesh.points[v][c] - before[v][c]) * (mesh.points[v][c] - before[v][c]);
+  return sum;
+}
+
+/// Where three or four corners of a quad were snapped onto one feature line (all the cells
+/// around a grid edge the line passes close to are marked), the quad would collapse onto the
+/// line. Keeps the two neighbouring corners that moved least (a Corner point always counts as
+/// on the line) and puts the other Feature corners of that line back where they were, as Free
+/// points. Faces in order, so the result is deterministic. Returns the number of points put back.
+std::uint64_t keepOnePairPerFace(QuadMesh& mesh, const std::vector<std::array<double, 3>>& before) {
+  std::uint64_t restored = 0;
+  for (const auto& face : mesh.faces) {
+    if (cornerCount(face) != 4) continue;
+    for (int k = 0; k < 4; ++k) {
+      const PointConstraint& seed = mesh.constraints[face[std::size_t(k)]];
+      if (seed.role != PointRole::Feature) continue;
+      const std::uint32_t curve = seed.curve;
+      auto onLine = [&](int c) {
+        const PointConstraint& constraint = mesh.constraints[face[std::size_t(c & 3)]];
+        return constraint.role == PointRole::Corner ||
+               (constraint.role == PointRole::Feature && constraint.curve == curve);
+      };
+      int count = 0;
+      for (int c = 0; c < 4; ++c) count += onLine(c) ? 1 : 0;
+      if (count < 3) continue;
+      int bestPair = -1;
+      double bestMove = std::numeric_limits<double>::infinity();
+      for (int c = 0; c < 4; ++c) {
+        if (!onLine(c) || !onLine(c + 1)) continue;
+        const CornerIndex a = face[std::size_t(c)], b = face[std::size_t((c + 1) & 3)];
+        const double move = (a < before.size() ? snapMove(mesh, before, a) : 0.0) +
+                            (b < before.size() ? snapMove(mesh, before, b) : 0.0);
+        if (move < bestMove) bestMove = move, bestPair = c;
+      }
+      for (int c = 0; c < 4; ++c) {
+        if (c == bestPair || c == ((bestPair + 1) & 3)) continue;
+        const CornerIndex v = face[std::size_t(c)];
+        PointConstraint& constraint = mesh.constraints[v];
+        if (constraint.role != PointRole::Feature || constraint.curve != curve ||
+            v >= before.size())
+          continue;
+        mesh.points[v] = before[v];
+        constraint = PointConstraint{};
+        ++restored;
+      }
+    }
+  }
+  return restored;
 }
 
 }  // namespace
@@ -82,6 +137,8 @@ std::uint64_t snapToFeatures(QuadMesh& mesh, const std::vector<Coord>& pointCell
     forEachCell(ip, ip, [&](const Coord& c) { pointsOfCell[c].push_back(f); });
   }
 
+  const std::vector<std::array<double, 3>> before(
+      mesh.points.begin(), mesh.points.begin() + std::ptrdiff_t(pointCells.size()));
   std::atomic<std::uint64_t> moved{0};
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pointCells.size()),
                     [&](const tbb::blocked_range<std::size_t>& range) {
@@ -121,7 +178,7 @@ std::uint64_t snapToFeatures(QuadMesh& mesh, const std::vector<Coord>& pointCell
                       }
                       moved += local;
                     });
-  return moved;
+  return moved - keepOnePairPerFace(mesh, before);
 }
 
 }  // namespace voxremesh::extract

@@ -16,6 +16,9 @@ namespace voxremesh::extract {
 /// in `featureCells` moves to the nearest feature point inside the closed cell (role Corner), or
 /// else to the closest point of the feature line segments near the cell (role Feature, curve: the
 /// line's index in mesh.curves). Points of cells without a feature nearby are left as they are.
+/// Where three or four corners of a quad land on one feature line, only the two neighbouring
+/// corners that moved least stay there; the others go back (Free), so no quad collapses onto a
+/// line.
 /// Runs in parallel; deterministic.
 /// @param mesh           points and constraints (one per point) to update
 /// @param pointCells     the cell of each point of mesh (the first pointCells.size() points)

@@ -1,6 +1,7 @@
 // Building a QuadMesh from the shells of a model.
 #include "voxremesh/quad_mesh.h"
 
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -51,6 +52,39 @@ FeModel modelFromQuadMesh(const QuadMesh& mesh, Id part) {
   }
   model.partOrAdd(part);
   return model;
+}
+
+QuadMesh joinAtJunctions(const std::vector<QuadMesh>& meshes) {
+  QuadMesh joined;
+  if (!meshes.empty()) joined.part = meshes.front().part;
+  std::map<std::array<double, 3>, CornerIndex> junctionPoint;
+  for (const QuadMesh& mesh : meshes) {
+    const auto curveBase = static_cast<std::uint32_t>(joined.curves.size());
+    joined.curves.insert(joined.curves.end(), mesh.curves.begin(), mesh.curves.end());
+    std::vector<CornerIndex> index(mesh.points.size());
+    for (std::size_t v = 0; v < mesh.points.size(); ++v) {
+      PointConstraint constraint =
+          mesh.constraints.empty() ? PointConstraint{} : mesh.constraints[v];
+      if (constraint.curve != kNoCurve) constraint.curve += curveBase;
+      if (constraint.role == PointRole::Junction) {
+        const auto [it, inserted] =
+            junctionPoint.emplace(mesh.points[v], static_cast<CornerIndex>(joined.points.size()));
+        if (!inserted) {
+          index[v] = it->second;
+          continue;
+        }
+      }
+      index[v] = static_cast<CornerIndex>(joined.points.size());
+      joined.points.push_back(mesh.points[v]);
+      joined.constraints.push_back(constraint);
+    }
+    for (std::array<CornerIndex, 4> face : mesh.faces) {
+      for (int k = 0; k < cornerCount(face); ++k)
+        face[static_cast<std::size_t>(k)] = index[face[static_cast<std::size_t>(k)]];
+      joined.faces.push_back(face);
+    }
+  }
+  return joined;
 }
 
 void eraseUnusedPoints(QuadMesh& mesh) {

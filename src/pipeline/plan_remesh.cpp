@@ -117,15 +117,22 @@ std::vector<PartPlan> planRemesh(const FeModel& model, const RemeshSettings& set
   return plans;
 }
 
-Volume partVolume(const FeModel& model, const PartPlan& plan, const RemeshSettings& settings) {
-  const std::vector<Sheet> sheets = buildSheets(model, plan.part, settings.sheets);
+std::vector<SheetVolume> partVolumes(const FeModel& model, const PartPlan& plan,
+                                     const RemeshSettings& settings) {
+  std::vector<Sheet> sheets = buildSheets(model, plan.part, settings.sheets);
   if (sheets.empty())
     throw std::runtime_error("part " + std::to_string(plan.part) +
                              " has no shell with an area to remesh");
   VolumeSettings volume = settings.volume;
   volume.rule = VoxelSizeRule::TargetElementSize;
   volume.targetElementSize = plan.targetSize;
-  return buildVolume(sheets, volume);
+  std::vector<SheetVolume> result;
+  result.reserve(sheets.size());
+  for (Sheet& sheet : sheets) {
+    Volume sheetVolume = buildVolume({sheet}, volume);
+    result.push_back({std::move(sheet), std::move(sheetVolume)});
+  }
+  return result;
 }
 
 }  // namespace voxremesh

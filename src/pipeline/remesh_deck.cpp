@@ -85,6 +85,31 @@ std::vector<FeModel> partModels(const FeModel& deck, const std::vector<PartPlan>
   return models;
 }
 
+/// The faces of a sheet as a mesh, the surface its new mesh is projected on.
+QuadMesh sheetSurface(const Sheet& sheet) {
+  QuadMesh mesh;
+  mesh.part = sheet.part;
+  mesh.points = sheet.points;
+  mesh.faces.reserve(sheet.faces.size());
+  for (const auto& face : sheet.faces)
+    mesh.faces.push_back({face[0], face[1], face[2], face[3] == kNoPoint ? kNoCorner : face[3]});
+  return mesh;
+}
+
+/// Adds the counts of one sheet's extraction to the part's.
+void addExtractStats(ExtractStats& sum, const ExtractStats& add) {
+  sum.surfaceCells += add.surfaceCells;
+  sum.tunnelCells += add.tunnelCells;
+  sum.skippedCells += add.skippedCells;
+  sum.cutCells += add.cutCells;
+  sum.dualVertices += add.dualVertices;
+  sum.dualQuads += add.dualQuads;
+  sum.stripQuads += add.stripQuads;
+  sum.stripTriangles += add.stripTriangles;
+  sum.snappedVertices += add.snappedVertices;
+  sum.junctionNodes += add.junctionNodes;
+}
+
 }  // namespace
 
 RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
@@ -114,22 +139,28 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
       try {
         tell("volume", plans[i].part, false);
         auto stageStart = std::chrono::steady_clock::now();
-        const Volume volume = partVolume(models[i], plans[i], settings);
+        const std::vector<SheetVolume> volumes = partVolumes(models[i], plans[i], settings);
         part.volumeSeconds = since(stageStart);
-        tell("extract", plans[i].part, false);
-        stageStart = std::chrono::steady_clock::now();
-        meshes[i] = extractQuadMesh(volume, settings.extract, &part.extract);
-        part.extractSeconds = since(stageStart);
-        meshes[i].part = plans[i].part;
-        if (settings.optimize) {
-          tell("optimize", plans[i].part, false);
+        std::vector<QuadMesh> sheetMeshes;
+        for (const SheetVolume& sheet : volumes) {
+          tell("extract", plans[i].part, false);
           stageStart = std::chrono::steady_clock::now();
-          const ReferenceSurface original(quadMeshFromModel(models[i], plans[i].part));
-          OptimizeSettings optimizeSettings = settings.optimizeSettings;
-          optimizeSettings.quality.targetSize = plans[i].targetSize;
-          optimizeQuadMesh(meshes[i], original, optimizeSettings);
-          part.optimizeSeconds = since(stageStart);
+          ExtractStats stats;
+          sheetMeshes.push_back(extractQuadMesh(sheet.volume, settings.extract, &stats));
+          addExtractStats(part.extract, stats);
+          part.extractSeconds += since(stageStart);
+          if (settings.optimize) {
+            tell("optimize", plans[i].part, false);
+            stageStart = std::chrono::steady_clock::now();
+            const ReferenceSurface original(sheetSurface(sheet.sheet));
+            OptimizeSettings optimizeSettings = settings.optimizeSettings;
+            optimizeSettings.quality.targetSize = plans[i].targetSize;
+            optimizeQuadMesh(sheetMeshes.back(), original, optimizeSettings);
+            part.optimizeSeconds += since(stageStart);
+          }
         }
+        meshes[i] = joinAtJunctions(sheetMeshes);
+        meshes[i].part = plans[i].part;
         for (const auto& face : meshes[i].faces)
           (cornerCount(face) == 4 ? part.quads : part.trias)++;
       } catch (...) {

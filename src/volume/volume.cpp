@@ -66,6 +66,9 @@ const std::vector<VolumeCurve>& Volume::boundaryLoops() const {
 const std::vector<std::array<double, 3>>& Volume::featurePoints() const {
   return impl_->featurePoints;
 }
+const std::vector<VolumeCurve>& Volume::junctionCurves() const {
+  return impl_->junctionCurves;
+}
 
 namespace {
 
@@ -110,6 +113,8 @@ Volume buildVolume(const std::vector<Sheet>& sheets, const VolumeSettings& setti
     for (const Polyline& loop : sheet.boundaryLoops) {
       out.boundaryLoops.push_back(toWorld(sheet, loop));
     }
+    for (const Polyline& junction : sheet.junctionCurves)
+      out.junctionCurves.push_back(toWorld(sheet, junction));
     for (PointIndex p : sheet.featurePoints) {
       if (p >= sheet.points.size()) {
         throw std::invalid_argument("a feature point refers to point " + std::to_string(p) +

@@ -22,6 +22,7 @@ struct Volume::Impl {
   std::vector<VolumeCurve> featureLines;
   std::vector<VolumeCurve> boundaryLoops;
   std::vector<std::array<double, 3>> featurePoints;
+  std::vector<VolumeCurve> junctionCurves;
 };
 
 namespace volume {

@@ -34,6 +34,7 @@ constexpr const char* kMetaPart = "voxremesh_part_id";
 constexpr const char* kMetaFeatureLines = "voxremesh_feature_lines";
 constexpr const char* kMetaBoundaryLoops = "voxremesh_boundary_loops";
 constexpr const char* kMetaFeaturePoints = "voxremesh_feature_points";
+constexpr const char* kMetaJunctionCurves = "voxremesh_junction_curves";
 
 void appendPoint(std::string& out, const std::array<double, 3>& p) {
   char text[96];
@@ -187,6 +188,7 @@ void writeVolume(const Volume& volume, const std::filesystem::path& path) {
   fileMeta.insertMeta(kMetaFeatureLines, openvdb::StringMetadata(encodeCurves(v.featureLines)));
   fileMeta.insertMeta(kMetaBoundaryLoops, openvdb::StringMetadata(encodeCurves(v.boundaryLoops)));
   fileMeta.insertMeta(kMetaFeaturePoints, openvdb::StringMetadata(encodePoints(v.featurePoints)));
+  fileMeta.insertMeta(kMetaJunctionCurves, openvdb::StringMetadata(encodeCurves(v.junctionCurves)));
 
   std::filesystem::path temporary = path;
   temporary += ".tmp." + std::to_string(::getpid());
@@ -257,6 +259,9 @@ Volume readVolume(const std::filesystem::path& path) {
   text.clear();
   readMeta<openvdb::StringMetadata>(*meta, kMetaBoundaryLoops, text);
   v.boundaryLoops = decodeCurves(text, name, kMetaBoundaryLoops);
+  text.clear();
+  readMeta<openvdb::StringMetadata>(*meta, kMetaJunctionCurves, text);
+  v.junctionCurves = decodeCurves(text, name, kMetaJunctionCurves);
   text.clear();
   readMeta<openvdb::StringMetadata>(*meta, kMetaFeaturePoints, text);
   std::size_t start = 0;

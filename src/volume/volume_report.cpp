@@ -81,6 +81,7 @@ VolumeReport inspectVolume(const Volume& volume) {
   report.featureLines = v.featureLines.size();
   report.featurePoints = v.featurePoints.size();
   report.boundaryLoops = v.boundaryLoops.size();
+  report.junctionCurves = v.junctionCurves.size();
   return report;
 }
 
@@ -124,10 +125,10 @@ std::string formatVolumeReport(const VolumeReport& report) {
   }
   std::snprintf(line, sizeof line,
                 "invalid voxels %llu, feature cells %llu, feature lines %zu, feature points %zu, "
-                "boundary loops %zu\n",
+                "boundary loops %zu, junction curves %zu\n",
                 static_cast<unsigned long long>(report.invalidVoxels),
                 static_cast<unsigned long long>(report.featureVoxels), report.featureLines,
-                report.featurePoints, report.boundaryLoops);
+                report.featurePoints, report.boundaryLoops, report.junctionCurves);
   out += line;
   return out;
 }
@@ -173,6 +174,7 @@ std::string volumeReportJson(const VolumeReport& report) {
   out += ",\"feature_lines\":" + std::to_string(report.featureLines);
   out += ",\"feature_points\":" + std::to_string(report.featurePoints);
   out += ",\"boundary_loops\":" + std::to_string(report.boundaryLoops);
+  out += ",\"junction_curves\":" + std::to_string(report.junctionCurves);
   out += "}";
   return out;
 }

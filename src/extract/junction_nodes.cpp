@@ -1,0 +1,200 @@
+// Junction curve nodes (see junction_nodes.h).
+#include "extract/junction_nodes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+
+namespace voxremesh::extract {
+
+namespace {
+
+double distance(const Point3& a, const Point3& b) {
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                   (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+/// The curve's points in the canonical direction (see junction_nodes.h).
+std::vector<Point3> canonicalPoints(const VolumeCurve& curve) {
+  std::vector<Point3> points = curve.points;
+  if (points.size() < 2) return points;
+  if (!curve.closed) {
+    if (points.back() < points.front()) std::reverse(points.begin(), points.end());
+    return points;
+  }
+  const auto smallest = std::min_element(points.begin(), points.end());
+  std::rotate(points.begin(), smallest, points.end());
+  if (points.back() < points[1]) std::reverse(points.begin() + 1, points.end());
+  return points;
+}
+
+/// True when the curve turns at point i by more than kJunctionCornerDeg.
+bool turns(const std::vector<Point3>& points, std::size_t previous, std::size_t i,
+           std::size_t next) {
+  double in[3], out[3], inLength = 0.0, outLength = 0.0, dot = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    in[c] = points[i][std::size_t(c)] - points[previous][std::size_t(c)];
+    out[c] = points[next][std::size_t(c)] - points[i][std::size_t(c)];
+    inLength += in[c] * in[c];
+    outLength += out[c] * out[c];
+    dot += in[c] * out[c];
+  }
+  if (inLength == 0.0 || outLength == 0.0) return false;
+  const double cosine = std::clamp(dot / std::sqrt(inLength * outLength), -1.0, 1.0);
+  return std::acos(cosine) * 180.0 / M_PI > kJunctionCornerDeg;
+}
+
+/// A node of a curve: at arc length `param`, and at curve point `point` when it is one.
+struct CurveNode {
+  double param = 0.0;
+  std::size_t point = SIZE_MAX;
+};
+
+/// Walks a polyline (closed: point n is point 0 again) by arc length.
+struct Walk {
+  const std::vector<Point3>& points;
+  bool closed;
+  std::vector<double> arc;  ///< arc length at each point, plus the closing point when closed
+
+  Walk(const std::vector<Point3>& curvePoints, bool isClosed)
+      : points(curvePoints), closed(isClosed) {
+    const std::size_t n = points.size();
+    arc.assign(1, 0.0);
+    for (std::size_t i = 1; i < n + (closed ? 1 : 0); ++i)
+      arc.push_back(arc.back() + distance(points[i - 1], points[i % n]));
+  }
+  const Point3& at(std::size_t i) const { return points[i % points.size()]; }
+  /// The segment holding arc length s and the fraction along it (closed: s may run one
+  /// length past the end).
+  std::pair<std::size_t, double> locate(double s) const {
+    if (closed && s >= arc.back()) s -= arc.back();
+    const std::size_t segment =
+        std::min<std::size_t>(
+            std::size_t(std::upper_bound(arc.begin(), arc.end(), s) - arc.begin()),
+            arc.size() - 1) -
+        1;
+    const double length = arc[segment + 1] - arc[segment];
+    return {segment, length > 0.0 ? (s - arc[segment]) / length : 0.0};
+  }
+  Point3 position(const CurveNode& node) const {
+    if (node.point != SIZE_MAX) return at(node.point);
+    const auto [segment, t] = locate(node.param);
+    const Point3 &a = at(segment), &b = at(segment + 1);
+    return {a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t, a[2] + (b[2] - a[2]) * t};
+  }
+};
+
+/// Adds the curve points strictly between nodes x and y that lie farther than `tolerance` from
+/// the chord between them, farthest first and recursively.
+void addFarPoints(const Walk& walk, const CurveNode& x, const CurveNode& y, double tolerance,
+                  std::vector<CurveNode>& out) {
+  const Point3 a = walk.position(x), b = walk.position(y);
+  double worst = tolerance, worstParam = 0.0;
+  std::size_t worstPoint = SIZE_MAX;
+  const std::size_t n = walk.points.size();
+  for (std::size_t k = 0; k < (walk.closed ? 2 * n : n); ++k) {
+    const std::size_t i = k % n;
+    const double v = walk.arc[i] + (k >= n ? walk.arc.back() : 0.0);
+    if (v <= x.param || v >= y.param) continue;
+    const Point3& p = walk.at(i);
+    double ab[3], ap[3], len2 = 0.0, dot = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      ab[c] = b[std::size_t(c)] - a[std::size_t(c)];
+      ap[c] = p[std::size_t(c)] - a[std::size_t(c)];
+      len2 += ab[c] * ab[c];
+      dot += ab[c] * ap[c];
+    }
+    const double t = len2 > 0.0 ? std::clamp(dot / len2, 0.0, 1.0) : 0.0;
+    const Point3 foot{a[0] + ab[0] * t, a[1] + ab[1] * t, a[2] + ab[2] * t};
+    const double d = distance(foot, p);
+    if (d > worst) worst = d, worstPoint = i, worstParam = v;
+  }
+  if (worstPoint == SIZE_MAX) return;
+  const CurveNode middle{worstParam, worstPoint};
+  addFarPoints(walk, x, middle, tolerance, out);
+  out.push_back(middle);
+  addFarPoints(walk, middle, y, tolerance, out);
+}
+
+/// The nodes of one curve in canonical order (closed: the first is not repeated).
+std::vector<CurveNode> sampleCurve(const Walk& walk, double spacing, double tolerance) {
+  const std::size_t n = walk.points.size();
+  std::vector<std::size_t> anchors;
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool end = !walk.closed && (i == 0 || i + 1 == n);
+    if (end || ((walk.closed || (i > 0 && i + 1 < n)) &&
+                turns(walk.points, (i + n - 1) % n, i, (i + 1) % n)))
+      anchors.push_back(i);
+  }
+  if (anchors.empty()) anchors.push_back(0);
+  if (walk.closed) anchors.push_back(anchors.front() + n);  // back to the first anchor
+  std::vector<CurveNode> nodes;
+  for (std::size_t k = 0; k + 1 < anchors.size(); ++k) {
+    const double from = walk.arc[anchors[k] % n] + (anchors[k] >= n ? walk.arc.back() : 0.0);
+    const double to = anchors[k + 1] >= n && walk.closed
+                          ? walk.arc[anchors[k + 1] - n] + walk.arc.back()
+                          : walk.arc[anchors[k + 1]];
+    const double length = to - from;
+    long pieces = std::max(1L, std::lround(length / spacing));
+    if (walk.closed && anchors.size() == 2) pieces = std::max(3L, pieces);
+    std::vector<CurveNode> span{{from, anchors[k] % n}};
+    for (long j = 1; j < pieces; ++j) span.push_back({from + length * double(j) / double(pieces)});
+    span.push_back({to, anchors[k + 1] % n});
+    for (std::size_t j = 0; j + 1 < span.size(); ++j) {
+      nodes.push_back(span[j]);
+      // Parameters beyond the closing point wrap around for the far-point search.
+      addFarPoints(walk, span[j], span[j + 1], tolerance, nodes);
+    }
+    if (!walk.closed && k + 2 == anchors.size()) nodes.push_back(span.back());
+  }
+  return nodes;
+}
+
+}  // namespace
+
+JunctionNodes::JunctionNodes(const std::vector<VolumeCurve>& curves, double spacing,
+                             double tolerance) {
+  if (!(spacing > 0.0) || !std::isfinite(spacing) || !(tolerance > 0.0) ||
+      !std::isfinite(tolerance))
+    throw std::invalid_argument("junction nodes: spacing and tolerance must be positive");
+  for (const VolumeCurve& curve : curves) {
+    if (curve.points.size() < 2) continue;
+    const std::vector<Point3> points = canonicalPoints(curve);
+    const Walk walk(points, curve.closed);
+    const std::vector<CurveNode> nodes = sampleCurve(walk, spacing, tolerance);
+    const std::size_t segments = walk.arc.size() - 1;
+    std::vector<JunctionEdgeNodes> perEdge(segments);
+    for (std::size_t s = 0; s < segments; ++s) perEdge[s].from = walk.at(s);
+    for (const CurveNode& node : nodes) {
+      if (node.point != SIZE_MAX) {
+        nodePoints_.push_back(walk.at(node.point));
+        continue;
+      }
+      auto [segment, t] = walk.locate(node.param);
+      if (t <= 0.0 || t >= 1.0) {  // on a curve point after all
+        nodePoints_.push_back(walk.at(t <= 0.0 ? segment : segment + 1));
+        continue;
+      }
+      perEdge[segment].along.push_back(t);
+      perEdge[segment].points.push_back(walk.position(node));
+    }
+    for (std::size_t s = 0; s < segments; ++s) {
+      const Point3 &a = walk.at(s), &b = walk.at(s + 1);
+      edges_.emplace(std::make_pair(std::min(a, b), std::max(a, b)), std::move(perEdge[s]));
+    }
+  }
+  std::sort(nodePoints_.begin(), nodePoints_.end());
+  nodePoints_.erase(std::unique(nodePoints_.begin(), nodePoints_.end()), nodePoints_.end());
+}
+
+const JunctionEdgeNodes* JunctionNodes::edge(const Point3& a, const Point3& b) const {
+  const auto it = edges_.find(std::make_pair(std::min(a, b), std::max(a, b)));
+  return it == edges_.end() ? nullptr : &it->second;
+}
+
+bool JunctionNodes::isNodePoint(const Point3& p) const {
+  return std::binary_search(nodePoints_.begin(), nodePoints_.end(), p);
+}
+
+}  // namespace voxremesh::extract

@@ -1,0 +1,68 @@
+// The nodes extraction puts on junction curves (curves where sheets or parts met): computed from
+// the curve alone, so that every sheet meshed on either side gets bit-identical nodes there and
+// the meshes share nodes after welding (DESIGN.md, "Junctions": discretise such curves once and
+// use them on both sides).
+//
+// Sampling of one curve (junctionNodes):
+// - Canonical direction: a closed curve starts at its lexicographically smallest point (x, then
+//   y, then z) and runs towards the smaller of that point's two neighbours; an open curve starts
+//   at the smaller of its two ends. Every side therefore walks the same points the same way.
+// - Anchors: the ends of an open curve, and the points where the curve turns by more than
+//   kJunctionCornerDeg; a closed curve without such a point is anchored at its start.
+// - Between consecutive anchors (arc length L) round(L / spacing) (at least one) pieces of equal
+//   arc length; where the chord between two nodes misses a curve point by more than `tolerance`,
+//   that point becomes a node too (farthest first, recursively, as Douglas-Peucker).
+// - A node at a curve point takes its exact coordinates.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "voxremesh/volume.h"
+
+namespace voxremesh::extract {
+
+/// A curve point turning by more than this (degrees) anchors the sampling of a junction curve.
+inline constexpr double kJunctionCornerDeg = 30.0;
+
+using Point3 = std::array<double, 3>;
+
+/// The nodes on one edge of a junction curve.
+struct JunctionEdgeNodes {
+  Point3 from;                 ///< the edge's first point in the canonical direction
+  std::vector<double> along;   ///< fractions in (0, 1) from `from`, ascending
+  std::vector<Point3> points;  ///< the node positions, one per fraction
+};
+
+/// The nodes of all junction curves of a volume, looked up by edge and by point.
+class JunctionNodes {
+ public:
+  /// No junctions.
+  JunctionNodes() = default;
+
+  /// Samples every curve (see the top of the file).
+  /// @param curves     junction curves in world space (Volume::junctionCurves)
+  /// @param spacing    target distance between nodes, > 0 (the voxel size)
+  /// @param tolerance  largest distance of a curve point from the chord between two nodes, > 0
+  /// Throws std::invalid_argument when spacing or tolerance is not positive and finite.
+  JunctionNodes(const std::vector<VolumeCurve>& curves, double spacing, double tolerance);
+
+  /// True when there are no junction curves.
+  bool empty() const { return edges_.empty(); }
+
+  /// The nodes strictly inside the edge a-b (either direction) when it is an edge of a junction
+  /// curve, else null.
+  const JunctionEdgeNodes* edge(const Point3& a, const Point3& b) const;
+
+  /// True when p is a point of a junction curve that is itself a node.
+  bool isNodePoint(const Point3& p) const;
+
+ private:
+  std::map<std::pair<Point3, Point3>, JunctionEdgeNodes> edges_;  ///< key: (lower, higher) point
+  std::vector<Point3> nodePoints_;                                ///< sorted
+};
+
+}  // namespace voxremesh::extract
