@@ -146,8 +146,11 @@ void runWrite(ChainState& state, const ActionCall& call) {
              std::to_string(report.remaps.size()) + " node references remapped, " +
              std::to_string(report.unmapped.size()) + " not remappable)";
       for (const UnmappedReference& ref : report.unmapped)
-        warnings.push_back(ref.keyword + " at line " + std::to_string(ref.line) + ": node " +
-                           std::to_string(ref.node) + " kept: " + ref.reason);
+        warnings.push_back(ref.keyword + " at " +
+                           (ref.blockLine ? "line " + std::to_string(ref.line) + " of its block"
+                                          : (ref.file.empty() ? "" : ref.file + " ") + "line " +
+                                                std::to_string(ref.line)) +
+                           ": node " + std::to_string(ref.node) + " kept: " + ref.reason);
     } else {
       writeDeck(modelFromQuadMesh(item.mesh, item.mesh.part != 0 ? item.mesh.part : 1), path,
                 options, &warnings);

@@ -155,8 +155,11 @@ int runRemesh(const std::vector<std::string>& args) {
   if (const auto path = parsed.value("--report")) writeRemeshReport(report, *path);
   progress.clear();
   for (const UnmappedReference& ref : report.assembly.unmapped)
-    warnings.push_back(ref.keyword + " (line " + std::to_string(ref.line) + "): node " +
-                       std::to_string(ref.node) + " kept: " + ref.reason);
+    warnings.push_back(ref.keyword + " (" +
+                       (ref.blockLine ? "line " + std::to_string(ref.line) + " of its block"
+                                      : (ref.file.empty() ? "" : ref.file + " ") + "line " +
+                                            std::to_string(ref.line)) +
+                       "): node " + std::to_string(ref.node) + " kept: " + ref.reason);
   printWarnings(warnings);
 
   const double seconds =
