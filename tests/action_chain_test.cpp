@@ -194,3 +194,99 @@ TEST(ActionChainCli, ExtractWritesTheMeshIntoItsDeck) {
   EXPECT_GT(out.shells.size(), 1000u);
   for (const Shell& shell : out.shells) EXPECT_EQ(shell.part, 100);
 }
+
+TEST(ActionChainCli, OptimizeAndQualityReplayFromTheirConfig) {
+  const fs::path dir = scratchDir("chain_optimize");
+  const std::string sample = quoted(samplePart());
+  const auto first =
+      runCli("-read " + sample + " -voxelize size=5 -write " + quoted(dir / "a.vdb") +
+             " -print -extract -optimize -quality json=" + quoted(dir / "a.json") +
+             " vtu=" + quoted(dir / "a.vtu") + " -write " + quoted(dir / "a.k") + " -save-chain " +
+             quoted(dir / "chain.cfg"));
+  ASSERT_EQ(first.exitCode, 0) << first.output;
+  EXPECT_TRUE(contains(first.output, "optimised part 100:")) << first.output;
+  EXPECT_TRUE(contains(first.output, "any criterion")) << first.output;
+  EXPECT_TRUE(contains(first.output, "distance max")) << first.output;  // against the original
+  EXPECT_TRUE(contains(readText(dir / "a.json"), "\"failing\"")) << readText(dir / "a.json");
+  const std::string vtu = readText(dir / "a.vtu");
+  EXPECT_TRUE(contains(vtu, "Name=\"pass\"")) << vtu.substr(0, 300);
+  EXPECT_TRUE(contains(vtu, "Name=\"distance\"")) << vtu.substr(0, 300);
+  // The saved chain, outputs renamed, gives the same bytes.
+  std::string config = readText(dir / "chain.cfg");
+  EXPECT_TRUE(contains(config, "-optimize\n")) << config;
+  EXPECT_TRUE(contains(config, "-quality json=")) << config;
+  for (const char* ext : {".vdb", ".json", ".vtu", ".k"}) {
+    const std::string from = (dir / (std::string("a") + ext)).string();
+    ASSERT_NE(config.find(from), std::string::npos) << from << "\n" << config;
+    config.replace(config.find(from), from.size(), (dir / (std::string("b") + ext)).string());
+  }
+  writeText(dir / "replay.cfg", config);
+  const auto second = runCli("-config " + quoted(dir / "replay.cfg"));
+  ASSERT_EQ(second.exitCode, 0) << second.output;
+  for (const char* ext : {".json", ".vtu", ".k"})  // (EXPECT_TRUE: no dump of whole decks)
+    EXPECT_TRUE(readText(dir / (std::string("a") + ext)) ==
+                readText(dir / (std::string("b") + ext)))
+        << ext;
+  // -extract -optimize is the main job's per-part pipeline: the same deck as remesh at size 5.
+  const auto remesh = runCli("remesh " + sample + " -o " + quoted(dir / "r.k") + " --size 5");
+  ASSERT_EQ(remesh.exitCode, 0) << remesh.output;
+  EXPECT_TRUE(readText(dir / "a.k") == readText(dir / "r.k"));
+  // From the .vdb alone the original is unknown: an error naming the way out, no output; with
+  // original= the same result as from the deck.
+  const auto alone = runCli("-read " + quoted(dir / "a.vdb") + " -extract -optimize -write " +
+                            quoted(dir / "c.k"));
+  EXPECT_EQ(alone.exitCode, 1);
+  EXPECT_TRUE(contains(alone.output, "-optimize (argument 4): no original surface for part 100"))
+      << alone.output;
+  EXPECT_TRUE(contains(alone.output, "original=FILE")) << alone.output;
+  EXPECT_FALSE(fs::exists(dir / "c.k"));
+  // original= gives the same optimised mesh (the same report) ...
+  const auto given =
+      runCli("-read " + quoted(dir / "a.vdb") + " -extract -optimize original=" + sample +
+             " -quality json=" + quoted(dir / "e.json"));
+  ASSERT_EQ(given.exitCode, 0) << given.output;
+  EXPECT_EQ(readText(dir / "e.json"), readText(dir / "a.json"));
+  // ... and so does a deck holding the part anywhere below the mesh.
+  const auto below = runCli("-read " + sample + " -read " + quoted(dir / "a.vdb") +
+                            " -extract -optimize -write " + quoted(dir / "d.k"));
+  ASSERT_EQ(below.exitCode, 0) << below.output;
+  EXPECT_TRUE(readText(dir / "d.k") == readText(dir / "a.k"));
+}
+
+TEST(ActionChainCli, QualityOfDecksAndBadOptions) {
+  const fs::path dir = scratchDir("chain_quality");
+  const std::string sample = quoted(samplePart());
+  // A deck: one part against itself is at distance 0; the table matches voxremesh quality.
+  const auto deck = runCli("-read " + sample + " -quality part=100 original=" + sample);
+  ASSERT_EQ(deck.exitCode, 0) << deck.output;
+  const auto command = runCli("quality " + sample + " --part 100 --original " + sample);
+  ASSERT_EQ(command.exitCode, 0) << command.output;
+  const std::string table = command.output.substr(command.output.find('\n') + 1);
+  EXPECT_TRUE(contains(deck.output, table)) << deck.output << "\n---\n" << table;
+  // Nothing to assess, a missing part, part= of a mesh, bad values: exit 1 or 2, no output.
+  const auto volumeOnly =
+      runCli("-read " + sample + " -voxelize size=8 -write " + quoted(dir / "v.vdb"));
+  ASSERT_EQ(volumeOnly.exitCode, 0) << volumeOnly.output;
+  const auto nothing =
+      runCli("-read " + quoted(dir / "v.vdb") + " -quality json=" + quoted(dir / "q.json"));
+  EXPECT_EQ(nothing.exitCode, 1);
+  EXPECT_TRUE(contains(nothing.output, "needs a quad mesh or a deck")) << nothing.output;
+  const auto missingPart = runCli("-read " + sample + " -quality part=7");
+  EXPECT_EQ(missingPart.exitCode, 1);
+  EXPECT_TRUE(contains(missingPart.output, "has no shells of part 7")) << missingPart.output;
+  const auto meshPart = runCli("-read " + sample + " -voxelize size=8 -extract -quality part=100");
+  EXPECT_EQ(meshPart.exitCode, 1);
+  EXPECT_TRUE(contains(meshPart.output, "part= applies to decks")) << meshPart.output;
+  const auto damping =
+      runCli("-read " + sample + " -voxelize size=8 -extract -optimize damping=0.9 -write " +
+             quoted(dir / "x.k"));
+  EXPECT_EQ(damping.exitCode, 1);
+  EXPECT_TRUE(contains(damping.output, "-optimize (argument 6)")) << damping.output;
+  EXPECT_FALSE(fs::exists(dir / "x.k"));
+  const auto typed = runCli("-read " + sample + " -write " + quoted(dir / "y.k") +
+                            " -voxelize -extract -optimize relax=many");
+  EXPECT_EQ(typed.exitCode, 2);
+  EXPECT_TRUE(contains(typed.output, "-optimize relax")) << typed.output;
+  EXPECT_FALSE(fs::exists(dir / "y.k"));
+  EXPECT_FALSE(fs::exists(dir / "q.json"));
+}

@@ -158,6 +158,58 @@ TEST(Batch, BrokenJobsFailAloneAndShardsSplitTheWork) {
   EXPECT_THROW(parseShard("1", options), SettingError);
 }
 
+TEST(Batch, RemeshAndQualityChainsFillTheQualityColumns) {
+  const fs::path dir = scratchDir("batch_quality");
+  const std::string sample = samplePart().string();
+  writeText(dir / "jobs.json",
+            "{\"jobs\": [\n"
+            "  {\"task\": \"remesh\", \"input\": \"" +
+                sample +
+                "\", \"output\": \"out/remeshed.k\", \"settings\": {\"size\": 5}},\n"
+                "  {\"task\": \"chain\", \"input\": \"" +
+                sample +
+                "\", \"output\": \"out/chained.k\", \"chain\": [\"-read\", \"{input}\", "
+                "\"-voxelize\", \"size=5\", \"-extract\", \"-optimize\", \"-quality\", "
+                "\"-write\", \"{output}\"]},\n"
+                "  {\"task\": \"remesh\", \"name\": \"voxel\", \"input\": \"" +
+                sample +
+                "\", \"output\": \"out/voxel.k\", \"settings\": {\"voxel\": 2}}\n"
+                "]}\n");
+  const BatchFile file = readBatchFile(dir / "jobs.json");
+  ASSERT_EQ(file.jobs.size(), 3u);
+  EXPECT_EQ(file.jobs[0].task, BatchTask::Remesh);
+  BatchOptions options;
+  options.threads = 2;
+  const std::vector<BatchResult> results = runBatch(file.jobs, options);
+  ASSERT_EQ(results[0].status, "ok") << results[0].message;
+  ASSERT_EQ(results[1].status, "ok") << results[1].message;
+  EXPECT_EQ(results[2].status, "failed");
+  EXPECT_TRUE(contains(results[2].message, "not \"voxel\"")) << results[2].message;
+  EXPECT_FALSE(fs::exists(dir / "out" / "voxel.k"));
+  // The remesh job and the chain that runs the same stages agree.
+  const BatchResult& remesh = results[0];
+  ASSERT_TRUE(remesh.qualityFailures && remesh.qualityFailureShare && remesh.maxDistance);
+  EXPECT_GT(*remesh.qualityFailures, 0u);
+  EXPECT_EQ(remesh.elementsOut, readDeck(dir / "out" / "remeshed.k").shells.size());
+  EXPECT_DOUBLE_EQ(*remesh.qualityFailureShare,
+                   double(*remesh.qualityFailures) / double(*remesh.elementsOut));
+  EXPECT_GT(*remesh.maxDistance, 0.0);
+  EXPECT_LT(*remesh.maxDistance, 0.25 * 5);  // the distance limit at size 5
+  EXPECT_EQ(results[1].qualityFailures, remesh.qualityFailures);
+  EXPECT_EQ(results[1].qualityFailureShare, remesh.qualityFailureShare);
+  ASSERT_TRUE(results[1].maxDistance);
+  EXPECT_NEAR(*results[1].maxDistance, *remesh.maxDistance, 1e-9);
+  EXPECT_FALSE(results[2].qualityFailures);
+  // Summaries: the share column, empty / null where unknown.
+  const std::string csv = batchSummaryCsv(file.jobs, results);
+  EXPECT_TRUE(contains(csv, ",quality_failures,quality_failure_share,max_distance\n")) << csv;
+  EXPECT_TRUE(contains(csv, ",,,\n")) << csv;  // the failed job
+  const json::Json summary = json::parseJson(batchSummaryJson(file.jobs, results));
+  EXPECT_EQ(summary["jobs"].items[0]["quality_failure_share"].number, *remesh.qualityFailureShare);
+  EXPECT_EQ(summary["jobs"].items[0]["quality_failures"].number, double(*remesh.qualityFailures));
+  EXPECT_EQ(summary["jobs"].items[2]["quality_failure_share"].type, json::Json::Type::Null);
+}
+
 TEST(BatchCli, OneBrokenJobThenResume) {
   const fs::path dir = scratchDir("batch_cli");
   writeText(dir / "jobs.json", mixedJobs(samplePart()));

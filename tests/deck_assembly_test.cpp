@@ -244,6 +244,20 @@ TEST(DeckAssembly, NastranFieldsAreRewrittenInTheirColumns) {
   EXPECT_TRUE(report.remaps[0].blockLine);
   ASSERT_EQ(report.unmapped.size(), 4u);  // SPC1 THRU covers 1..4
   EXPECT_EQ(report.unmapped[0].keyword, "SPC1");
+  // Every report names the card and its line. The Nastran reader does not record where a
+  // verbatim block stood in the file (DeckBlock::line 0), so the line is the one within the
+  // block (blockLine): the block starts at the SPC1 of file line 7.
+  const std::vector<std::pair<std::string, std::size_t>> where = {
+      {"SPC1", 1}, {"SPC1", 1}, {"RBE2", 2}, {"RBE2", 2}, {"CONM2", 3}};
+  for (std::size_t i = 0; i < where.size(); ++i) {
+    EXPECT_EQ(report.remaps[i].keyword, where[i].first) << i;
+    EXPECT_EQ(report.remaps[i].line, where[i].second) << i;
+    EXPECT_TRUE(report.remaps[i].blockLine) << i;
+  }
+  for (const UnmappedReference& ref : report.unmapped) {
+    EXPECT_EQ(ref.line, 4u);
+    EXPECT_TRUE(ref.blockLine);
+  }
   writeDeck(model, dir / "out.bdf");
   const std::string out = readText(dir / "out.bdf");
   EXPECT_NE(out.find("SPC1         100  123456       5       8\n"), std::string::npos) << out;
@@ -281,7 +295,18 @@ TEST(DeckAssembly, AbaqusNsetAndBoundary) {
   ASSERT_EQ(report.remaps.size(), 3u);
   EXPECT_EQ(report.remaps[0].keyword, "*NSET");
   EXPECT_EQ(report.remaps[2].keyword, "*BOUNDARY");
+  // Lines within the block (the Abaqus reader does not record where it stood; it starts at
+  // the *NSET of file line 8).
+  EXPECT_EQ(report.remaps[0].line, 2u);
+  EXPECT_EQ(report.remaps[1].line, 2u);
+  EXPECT_EQ(report.remaps[2].line, 4u);
+  for (const NodeRemap& remap : report.remaps) EXPECT_TRUE(remap.blockLine);
   EXPECT_EQ(report.unmapped.size(), 4u);
+  for (const UnmappedReference& ref : report.unmapped) {
+    EXPECT_EQ(ref.keyword, "*NSET");
+    EXPECT_EQ(ref.line, 6u);
+    EXPECT_TRUE(ref.blockLine);
+  }
   writeDeck(model, dir / "out.inp");
   const std::string out = readText(dir / "out.inp");
   EXPECT_NE(out.find("5, 6, FIXSET\n"), std::string::npos) << out;

@@ -18,7 +18,12 @@
 // Stack
 // - read pushes a deck (any deck or mesh format) or a volume (.vdb).
 // - Actions that need an item use the topmost item of the kind they need (voxelize: a deck;
-//   slice: a volume; write and print: the top item) and push what they make on top.
+//   slice: a volume; extract: a volume; optimize: a quad mesh; quality: a quad mesh or deck;
+//   write and print: the top item) and push what they make on top.
+// - voxelize remembers the shells of the part it voxelized, extract and optimize pass them on:
+//   they are the original surface optimize projects on and quality measures the distance to (a
+//   volume read from a .vdb file has none; optimize then takes the part from the topmost deck
+//   that has it, or from original=FILE).
 // - write of a quad mesh assembles it into the topmost deck that has its part (deck_assembly.h)
 //   when there is one, else writes the mesh alone.
 #pragma once
@@ -27,12 +32,14 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "voxremesh/fe_model.h"
 #include "voxremesh/io.h"
 #include "voxremesh/quad_mesh.h"
+#include "voxremesh/quality.h"
 #include "voxremesh/volume.h"
 
 namespace voxremesh::chain {
@@ -120,6 +127,12 @@ struct ChainItem {
   FeModel deck;
   QuadMesh mesh;
   Volume volume;
+  /// Volumes made by voxelize and the meshes made from them: the shells of the part they were
+  /// made from (the original surface); empty when unknown (a volume read from a .vdb file).
+  QuadMesh original;
+  /// Volumes and meshes: the target element size they were made for (the voxel size); 0 for
+  /// decks.
+  double targetSize = 0.0;
 };
 
 /// What the actions work on and report to.
@@ -130,6 +143,8 @@ struct ChainState {
   /// Receives warnings about the input as they occur.
   std::function<void(const std::string&)> warn;
   Chain chain;  ///< the chain being run (for -save-chain)
+  /// The report of the last -quality action (batch summaries read it); empty without one.
+  std::optional<QualityReport> quality;
 };
 
 /// Runs the actions in order. A chain with a -help action prints the help instead.

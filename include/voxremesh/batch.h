@@ -12,7 +12,8 @@
 //     "name": "bracket",                     optional; default: the input file's stem, plus
 //                                            "-" and the variant number for variants
 //     "task": "voxelize",                    required: "voxelize" (a part into a .vdb volume),
-//                                            "convert" (deck to deck by extension) or "chain"
+//                                            "convert" (deck to deck by extension), "remesh"
+//                                            (the deck's parts remeshed, pipeline.h) or "chain"
 //     "input": "decks/bracket.k",            the input file, or
 //     "inputs": "decks/*.k",                 a glob: one job per matching file, sorted by name
 //                                            (wildcards * ? [...] in the file name only)
@@ -26,6 +27,8 @@
 //   }
 //   SETTINGS = { "size": 4, "voxel": 1.5, "part": 4075, "band": 3, "feature_angle": 30,
 //                "invalid_angle": 60, "format": "k" }   (all optional; format: of the output)
+//   remesh jobs: size is the target element size (default: per part its median edge), part the
+//   one part to remesh (default: all parts with shells), voxel is refused.
 // Jobs are numbered from 0 in the order of the file after expanding globs and variants.
 // A job file that is not valid JSON or breaks this structure is refused as a whole
 // (InputError naming the file and line); a setting of the wrong type or out of range, a missing
@@ -43,7 +46,7 @@
 namespace voxremesh {
 
 /// What a job does.
-enum class BatchTask { Voxelize, Convert, Chain };
+enum class BatchTask { Voxelize, Convert, Remesh, Chain };
 
 /// One job after expanding globs and variants.
 struct BatchJob {
@@ -96,9 +99,12 @@ struct BatchResult {
   double seconds = 0.0;
   std::optional<std::size_t> elementsIn;   ///< shells of the input (of the part for voxelize)
   std::optional<std::size_t> elementsOut;  ///< shells written (deck outputs)
-  /// Filled once the pipeline's quality and distance stages exist (issue 5): elements failing
-  /// a quality criterion and the two-sided distance to the original.
+  /// Remesh jobs (over the remeshed parts, remesh_quality.h) and chain jobs with a -quality
+  /// action (its last report): the elements failing a quality criterion at the default limits,
+  /// their share of all assessed elements, and the largest two-sided distance to the original
+  /// (chain jobs: when -quality measured one).
   std::optional<std::size_t> qualityFailures;
+  std::optional<double> qualityFailureShare;
   std::optional<double> maxDistance;
 };
 
@@ -110,7 +116,8 @@ std::vector<BatchResult> runBatch(const std::vector<BatchJob>& jobs, const Batch
 
 /// The summary as CSV: a header line, then one line per job that ran or was skipped (other
 /// shards left out): index,name,task,input,output,status,message,seconds,elements_in,
-/// elements_out,quality_failures,max_distance (empty where unknown; RFC 4180 quoting).
+/// elements_out,quality_failures,quality_failure_share,max_distance (empty where unknown;
+/// RFC 4180 quoting).
 std::string batchSummaryCsv(const std::vector<BatchJob>& jobs,
                             const std::vector<BatchResult>& results);
 
@@ -124,7 +131,7 @@ std::string batchSummaryJson(const std::vector<BatchJob>& jobs,
 void writeBatchSummaries(const std::vector<BatchJob>& jobs, const std::vector<BatchResult>& results,
                          const std::string& prefix);
 
-/// The name of a task ("voxelize", "convert", "chain").
+/// The name of a task ("voxelize", "convert", "remesh", "chain").
 const char* taskName(BatchTask task);
 
 }  // namespace voxremesh

@@ -169,11 +169,13 @@ class FileReader {
       task = BatchTask::Voxelize;
     } else if (taskText == "convert") {
       task = BatchTask::Convert;
+    } else if (taskText == "remesh") {
+      task = BatchTask::Remesh;
     } else if (taskText == "chain") {
       task = BatchTask::Chain;
     } else {
       fail(*job.find("task"),
-           "unknown task \"" + taskText + "\" (one of voxelize, convert, chain)");
+           "unknown task \"" + taskText + "\" (one of voxelize, convert, remesh, chain)");
     }
     std::vector<std::string> chain;
     if (const Json* given = job.find("chain")) {
@@ -248,6 +250,8 @@ const char* taskName(BatchTask task) {
       return "voxelize";
     case BatchTask::Convert:
       return "convert";
+    case BatchTask::Remesh:
+      return "remesh";
     case BatchTask::Chain:
       break;
   }

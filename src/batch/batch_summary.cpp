@@ -53,6 +53,9 @@ std::vector<Field> fields(const BatchJob& job, const BatchResult& result) {
     field.name = names[k];
     out.push_back(field);
   }
+  out.push_back(Field{"quality_failure_share",
+                      result.qualityFailureShare ? shortest(*result.qualityFailureShare) : "",
+                      result.qualityFailureShare.has_value(), true});
   out.push_back(Field{"max_distance", result.maxDistance ? shortest(*result.maxDistance) : "",
                       result.maxDistance.has_value(), true});
   return out;
@@ -64,7 +67,7 @@ std::string batchSummaryCsv(const std::vector<BatchJob>& jobs,
                             const std::vector<BatchResult>& results) {
   std::string text =
       "index,name,task,input,output,status,message,seconds,elements_in,elements_out,"
-      "quality_failures,max_distance\n";
+      "quality_failures,quality_failure_share,max_distance\n";
   for (std::size_t j = 0; j < jobs.size() && j < results.size(); ++j) {
     if (results[j].status == "other-shard") continue;
     std::string line;

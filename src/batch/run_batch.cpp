@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -17,6 +18,7 @@
 #include "voxremesh/errors.h"
 #include "voxremesh/io.h"
 #include "voxremesh/pipeline.h"
+#include "voxremesh/remesh_quality.h"
 #include "voxremesh/sheets.h"
 #include "voxremesh/volume.h"
 
@@ -104,6 +106,36 @@ void runConvert(const BatchJob& job, const JobSettings& settings, BatchResult& r
   result.elementsIn = result.elementsOut = model.shells.size();
 }
 
+void runRemesh(const BatchJob& job, const JobSettings& settings, BatchResult& result) {
+  if (settings.voxel)
+    throw SettingError("a remesh job takes the target element size \"size\", not \"voxel\"");
+  FeModel deck = readDeck(job.input);
+  const FeModel original = deck;
+  RemeshSettings remesh;
+  if (settings.size) remesh.targetSize = *settings.size;
+  if (settings.part) remesh.parts = {settings.part};
+  remesh.sheets.featureAngleDeg = settings.featureAngle;
+  remesh.volume.bandWidthVoxels = settings.band;
+  remesh.volume.invalidAngleDeg = settings.invalidAngle;
+  const RemeshReport report = remeshDeck(deck, remesh);
+  std::size_t assessed = 0, failing = 0;
+  double distance = 0.0;
+  for (const PartQuality& part : assessRemeshedParts(original, deck, report)) {
+    assessed += part.elementsAfter;
+    failing += part.failing();
+    distance = std::max(distance, part.maxDistance());
+  }
+  WriteOptions options;
+  options.format = settings.format;
+  writeDeck(deck, job.output, options);
+  result.elementsIn = original.shells.size();
+  result.elementsOut = deck.shells.size();
+  result.qualityFailures = failing;
+  result.qualityFailureShare = assessed ? double(failing) / double(assessed) : 0.0;
+  result.maxDistance = distance;
+  result.message = std::to_string(report.parts.size()) + " parts remeshed";
+}
+
 void runChainJob(const BatchJob& job, BatchResult& result) {
   if (!job.settings.empty())
     throw SettingError("a chain job takes its settings in the chain; use them as {KEY} there");
@@ -119,6 +151,11 @@ void runChainJob(const BatchJob& job, BatchResult& result) {
     const chain::ChainItem& top = state.stack.back();
     if (top.kind == chain::ChainItem::Kind::Deck) result.elementsOut = top.deck.shells.size();
     if (top.kind == chain::ChainItem::Kind::Mesh) result.elementsOut = top.mesh.faces.size();
+  }
+  if (state.quality) {
+    result.qualityFailures = state.quality->failingAny;
+    result.qualityFailureShare = state.quality->failingAnyShare;
+    if (state.quality->distance) result.maxDistance = state.quality->distance->max();
   }
   std::error_code ignored;
   if (!std::filesystem::is_regular_file(job.output, ignored))
@@ -146,6 +183,9 @@ BatchResult runJob(const BatchJob& job, const BatchOptions& options) {
         break;
       case BatchTask::Convert:
         runConvert(job, checkSettings(job), result);
+        break;
+      case BatchTask::Remesh:
+        runRemesh(job, checkSettings(job), result);
         break;
       case BatchTask::Chain:
         runChainJob(job, result);

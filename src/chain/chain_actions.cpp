@@ -1,11 +1,11 @@
 // The actions of the chain (see action_chain.h) and the runner. Adding an action is one entry in
-// kActions plus its function; optimize and quality (issue 5) follow the pattern of extract: take
-// the topmost item of the kind they need, push (or replace) what they make.
+// kActions plus its function; optimize and quality live in chain_mesh_actions.cpp.
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
 
+#include "chain/chain_stack.h"
 #include "io/atomic_file.h"
 #include "voxremesh/action_chain.h"
 #include "voxremesh/deck_assembly.h"
@@ -21,40 +21,12 @@ namespace voxremesh::chain {
 namespace {
 
 using Kind = ChainItem::Kind;
-
-const char* kindName(Kind kind) {
-  switch (kind) {
-    case Kind::Deck:
-      return "deck";
-    case Kind::Mesh:
-      return "quad mesh";
-    case Kind::Volume:
-      break;
-  }
-  return "volume";
-}
-
-/// The topmost item of a kind. Throws std::runtime_error when the stack has none.
-ChainItem& topOf(ChainState& state, Kind kind) {
-  for (auto it = state.stack.rbegin(); it != state.stack.rend(); ++it)
-    if (it->kind == kind) return *it;
-  throw std::runtime_error(std::string("needs a ") + kindName(kind) +
-                           " on the stack; read or make one first");
-}
-
-ChainItem& top(ChainState& state) {
-  if (state.stack.empty()) throw std::runtime_error("the stack is empty; read something first");
-  return state.stack.back();
-}
-
-void say(const ChainState& state, const std::string& text) {
-  if (state.print) state.print(text);
-}
-
-void warnAll(const ChainState& state, const Warnings& warnings) {
-  if (!state.warn) return;
-  for (const std::string& warning : warnings) state.warn(warning);
-}
+using detail::kindName;
+using detail::meshCounts;
+using detail::say;
+using detail::top;
+using detail::topOf;
+using detail::warnAll;
 
 bool isVdb(const std::filesystem::path& path) {
   std::string extension = path.extension().string();
@@ -112,6 +84,8 @@ void runVoxelize(ChainState& state, const ActionCall& call) {
   item.kind = Kind::Volume;
   item.name = "volume of part " + std::to_string(part) + " of " + source.name;
   item.volume = buildVolume(sheets, settings, VolumeSource{source.name});
+  item.original = quadMeshFromModel(source.deck, part);
+  item.targetSize = item.volume.info().voxelSize;
   char text[160];
   std::snprintf(text, sizeof text, ": voxel size %.6g, %zu sheets\n", item.volume.info().voxelSize,
                 sheets.size());
@@ -134,11 +108,10 @@ void runExtract(ChainState& state, const ActionCall& call) {
     item.mesh = extractQuadMesh(source.volume, settings, &stats);
     item.name = "quad mesh of " + source.name;
   }
-  std::size_t quads = 0;
-  for (const auto& face : item.mesh.faces) quads += cornerCount(face) == 4 ? 1 : 0;
-  say(state, "extracted part " + std::to_string(item.mesh.part) + ": " +
-                 std::to_string(item.mesh.points.size()) + " points, " + std::to_string(quads) +
-                 " quads, " + std::to_string(item.mesh.faces.size() - quads) + " triangles\n");
+  item.original = source.original;
+  item.targetSize = source.volume.info().voxelSize;
+  say(state,
+      "extracted part " + std::to_string(item.mesh.part) + ": " + meshCounts(item.mesh) + "\n");
   state.stack.push_back(std::move(item));
 }
 
@@ -173,8 +146,11 @@ void runWrite(ChainState& state, const ActionCall& call) {
              std::to_string(report.remaps.size()) + " node references remapped, " +
              std::to_string(report.unmapped.size()) + " not remappable)";
       for (const UnmappedReference& ref : report.unmapped)
-        warnings.push_back(ref.keyword + " at line " + std::to_string(ref.line) + ": node " +
-                           std::to_string(ref.node) + " kept: " + ref.reason);
+        warnings.push_back(ref.keyword + " at " +
+                           (ref.blockLine ? "line " + std::to_string(ref.line) + " of its block"
+                                          : (ref.file.empty() ? "" : ref.file + " ") + "line " +
+                                                std::to_string(ref.line)) +
+                           ": node " + std::to_string(ref.node) + " kept: " + ref.reason);
     } else {
       writeDeck(modelFromQuadMesh(item.mesh, item.mesh.part != 0 ? item.mesh.part : 1), path,
                 options, &warnings);
@@ -194,15 +170,11 @@ void runPrint(ChainState& state, const ActionCall&) {
     case Kind::Volume:
       say(state, item.name + "\n\n" + formatVolumeReport(inspectVolume(item.volume)));
       return;
-    case Kind::Mesh: {
-      std::size_t quads = 0;
-      for (const auto& face : item.mesh.faces) quads += cornerCount(face) == 4 ? 1 : 0;
+    case Kind::Mesh:
       say(state, item.name + ": quad mesh of part " + std::to_string(item.mesh.part) + ", " +
-                     std::to_string(item.mesh.points.size()) + " points, " + std::to_string(quads) +
-                     " quads, " + std::to_string(item.mesh.faces.size() - quads) + " triangles, " +
-                     std::to_string(item.mesh.curves.size()) + " curves\n");
+                     meshCounts(item.mesh) + ", " + std::to_string(item.mesh.curves.size()) +
+                     " curves\n");
       return;
-    }
   }
 }
 
@@ -256,6 +228,42 @@ const std::vector<ActionDef> kActions = {
       {"triangles", OptionType::Flag, "0", "the MC33 triangles instead (inspection)"}},
      runExtract,
      ""},
+    {"optimize",
+     "optimise the topmost quad mesh against the surface it was extracted from (optimize.h)",
+     "",
+     {{"size", OptionType::Number, "",
+       "target element size (default: the voxel size the mesh was extracted at)"},
+      {"warping", OptionType::Number, "12", "warping removal threshold in degrees"},
+      {"iterations", OptionType::Integer, "200", "most warping removal iterations"},
+      {"relax", OptionType::Integer, "10", "relaxation iterations (before and after merging)"},
+      {"damping", OptionType::Number, "0.5", "relaxation damping, in (0, 0.7]"},
+      {"rhombic", OptionType::Flag, "1", "collapse rhombic quads"},
+      {"merge", OptionType::Flag, "1", "merge triangle pairs into quads"},
+      {"folded", OptionType::Flag, "1", "collapse faces folded along a curve"},
+      {"short", OptionType::Number, "0", "collapse edges shorter than this x size (0: none)"},
+      {"original", OptionType::Text, "",
+       "a deck holding the original part (default: the part the mesh was made from)"}},
+     detail::runOptimize,
+     "The original surface is the part's shells as voxelize saw them; for a mesh of a volume read\n"
+     "from a .vdb file, the part from the topmost deck that has it, or from original=FILE.\n"
+     "Pushes the optimised mesh (the extracted one stays below it).\n"},
+    {"quality",
+     "print the FE quality of the topmost quad mesh or deck (quality.h)",
+     "",
+     {{"part", OptionType::Integer, "", "decks: only this part's shells (default: all)"},
+      {"size", OptionType::Number, "",
+       "target size of the length and distance limits (default: the mesh's voxel size, else the "
+       "median edge)"},
+      {"original", OptionType::Text, "",
+       "a deck to measure the distance to (default for meshes: the part they were made from)"},
+      {"json", OptionType::Text, "", "also write the report as JSON to this file"},
+      {"vtu", OptionType::Text, "",
+       "also write the elements with their metrics (cell data) and the distance to the original "
+       "(point data) to this .vtu file"}},
+     detail::runQuality,
+     "Prints the table of voxremesh quality (limits at their defaults, see voxremesh help\n"
+     "quality). With original= the same part (part=, or the mesh's part) is taken from that "
+     "deck.\n"},
     {"write",
      "write the top item: a deck or mesh by extension, a volume as .vdb",
      "file",

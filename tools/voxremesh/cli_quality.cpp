@@ -11,6 +11,7 @@
 #include "cli_common.h"
 #include "voxremesh/io.h"
 #include "voxremesh/quality.h"
+#include "voxremesh/remesh_quality.h"
 
 namespace voxremesh::cli {
 
@@ -70,68 +71,6 @@ const LimitOption kLimits[] = {
     {"--size", &QualitySettings::targetSize},
 };
 
-/// The shells of one part (all shells for part 0) with the nodes they use, numbered by first use
-/// so that node i is point i of quadMeshFromModel. Throws std::runtime_error when there are none.
-FeModel shellsOf(const FeModel& model, Id part, const std::string& path) {
-  const std::unordered_map<Id, std::size_t> index = model.nodeIndex();
-  FeModel out;
-  out.sourceFormat = model.sourceFormat;
-  std::unordered_map<Id, bool> used;
-  for (const Shell& shell : model.shells) {
-    if (part != 0 && shell.part != part) continue;
-    out.shells.push_back(shell);
-    out.shells.back().extras = -1;
-    out.shells.back().type = 0;
-    for (int k = 0; k < shell.nodeCount; ++k) {
-      const Id node = shell.nodes[static_cast<std::size_t>(k)];
-      if (!used.emplace(node, true).second) continue;
-      const auto found = index.find(node);
-      if (found == index.end())
-        throw std::runtime_error(path + ": shell " + std::to_string(shell.id) + " names node " +
-                                 std::to_string(node) + ", which is not defined");
-      out.nodes.push_back(model.nodes[found->second]);
-    }
-  }
-  if (out.shells.empty())
-    throw std::runtime_error(path + (part ? " has no shells of part " + std::to_string(part)
-                                          : std::string(" has no shell elements")));
-  return out;
-}
-
-/// A value ParaView can read: non-finite values become +-1e30.
-double finiteForVtu(double value) {
-  if (std::isnan(value)) return 1e30;
-  if (std::isinf(value)) return value > 0 ? 1e30 : -1e30;
-  return value;
-}
-
-/// The cell data of the .vtu: every metric, the failure bit mask and the pass flag.
-std::vector<FieldData> cellFields(const QualityReport& report) {
-  std::vector<FieldData> fields = {
-      {"warping_deg", {}},          {"aspect_ratio", {}},    {"min_angle_deg", {}},
-      {"max_angle_deg", {}},        {"skew_deg", {}},        {"jacobian_ratio", {}},
-      {"jacobian_ratio_gauss", {}}, {"scaled_jacobian", {}}, {"taper", {}},
-      {"min_length", {}},           {"fail_mask", {}},       {"pass", {}}};
-  for (std::size_t f = 0; f < report.elements; ++f) {
-    const ElementQuality& q = report.elementValues[f];
-    const double values[] = {q.warpingDeg,
-                             q.aspectRatio,
-                             q.minAngleDeg,
-                             q.maxAngleDeg,
-                             q.skewDeg,
-                             q.jacobianRatio,
-                             q.jacobianRatioGauss,
-                             q.scaledJacobian,
-                             q.taper,
-                             q.minLength,
-                             double(report.elementFailures[f]),
-                             report.elementFailures[f] == 0 ? 1.0 : 0.0};
-    for (std::size_t k = 0; k < fields.size(); ++k)
-      fields[k].values.push_back(finiteForVtu(values[k]));
-  }
-  return fields;
-}
-
 }  // namespace
 
 int runQuality(const std::vector<std::string>& args) {
@@ -174,12 +113,12 @@ int runQuality(const std::vector<std::string>& args) {
 
   const std::string& path = parsed.positional[0];
   Warnings warnings;
-  const FeModel shells = shellsOf(readDeck(path, readOptions, &warnings), part, path);
+  const FeModel shells = partShells(readDeck(path, readOptions, &warnings), part, path);
   const QuadMesh mesh = quadMeshFromModel(shells);
   std::optional<QuadMesh> original;
   if (const auto originalPath = parsed.value("--original")) {
     const FeModel originalModel = readDeck(*originalPath, readOptions, &warnings);
-    original = quadMeshFromModel(shellsOf(originalModel, part, *originalPath));
+    original = quadMeshFromModel(partShells(originalModel, part, *originalPath));
   }
   printWarnings(warnings);
   const QualityReport report = assessQuality(mesh, settings, original ? &*original : nullptr);
@@ -187,7 +126,7 @@ int runQuality(const std::vector<std::string>& args) {
   if (const auto vtu = parsed.value("--vtu")) {
     std::vector<FieldData> pointFields;
     if (report.distance) pointFields.push_back({"distance", report.distance->pointDistance});
-    writeVtu(shells, *vtu, cellFields(report), pointFields);
+    writeVtu(shells, *vtu, qualityCellFields(report), pointFields);
   }
   if (parsed.has("--json"))
     printOutput(qualityReportJson(report));
