@@ -1,0 +1,123 @@
+// Junctions: sheets that met along a curve (the wheel's disc and rim at their T-junction) are
+// voxelised and extracted separately and share nodes along the curve again (extract.h,
+// "Junctions"; pipeline.h partVolumes; quad_mesh.h joinAtJunctions).
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+
+#include "extract/junction_nodes.h"
+#include "support/mesh_topology.h"
+#include "support/surface_distance.h"
+#include "support/test_support.h"
+#include "voxremesh/io.h"
+#include "voxremesh/pipeline.h"
+
+namespace voxremesh {
+namespace {
+
+using Point3 = std::array<double, 3>;
+
+/// The edges of the mesh used by three or more faces, as segments.
+std::vector<std::array<Point3, 2>> nonManifoldSegments(const QuadMesh& mesh) {
+  std::map<std::pair<CornerIndex, CornerIndex>, int> uses;
+  for (const auto& face : mesh.faces) {
+    const int n = cornerCount(face);
+    for (int k = 0; k < n; ++k) {
+      const CornerIndex a = face[std::size_t(k)], b = face[std::size_t((k + 1) % n)];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  std::vector<std::array<Point3, 2>> result;
+  for (const auto& [edge, count] : uses)
+    if (count >= 3) result.push_back({mesh.points[edge.first], mesh.points[edge.second]});
+  return result;
+}
+
+TEST(JunctionNodes, SameNodesWhicheverWayAndWhereverTheCurveStarts) {
+  // A closed square-ish curve with a bend, given from different start points and directions.
+  VolumeCurve curve;
+  curve.closed = true;
+  curve.points = {{0, 0, 0}, {10, 0, 0}, {20, 1, 0}, {20, 10, 0}, {10, 12, 0}, {0, 10, 0}};
+  const extract::JunctionNodes reference({curve}, 3.0, 0.2);
+  VolumeCurve other = curve;
+  std::reverse(other.points.begin(), other.points.end());
+  std::rotate(other.points.begin(), other.points.begin() + 2, other.points.end());
+  const extract::JunctionNodes same({other}, 3.0, 0.2);
+  std::size_t nodes = 0;
+  for (std::size_t i = 0; i < curve.points.size(); ++i) {
+    const Point3& a = curve.points[i];
+    const Point3& b = curve.points[(i + 1) % curve.points.size()];
+    const extract::JunctionEdgeNodes* x = reference.edge(a, b);
+    const extract::JunctionEdgeNodes* y = same.edge(b, a);
+    ASSERT_NE(x, nullptr);
+    ASSERT_NE(y, nullptr);
+    EXPECT_EQ(x->points, y->points);  // bit-identical
+    EXPECT_EQ(reference.isNodePoint(a), same.isNodePoint(a));
+    nodes += x->points.size() + (reference.isNodePoint(a) ? 1 : 0);
+  }
+  // About one node per spacing (perimeter 63.6 / 3), corners included.
+  EXPECT_GE(nodes, 18u);
+  EXPECT_LE(nodes, 26u);
+  EXPECT_EQ(reference.edge({0, 0, 0}, {20, 10, 0}), nullptr);
+}
+
+TEST(Junctions, WheelSheetsShareTheirNodesAlongTheTJunction) {
+  VOXREMESH_REQUIRE_SHARED_DECK(path, "wheel.k");
+  const FeModel deck = readDeck(path);
+  const RemeshSettings settings;
+  const std::vector<PartPlan> plans = planRemesh(deck, settings);
+  ASSERT_EQ(plans.size(), 1u);
+  const std::vector<SheetVolume> volumes = partVolumes(deck, plans[0], settings);
+  ASSERT_EQ(volumes.size(), 3u);  // rim front, rim back, disc
+  std::vector<QuadMesh> meshes;
+  std::vector<std::set<Point3>> junctionPoints;
+  for (const SheetVolume& sheet : volumes) {
+    ASSERT_EQ(sheet.sheet.junctionCurves.size(), 1u);
+    meshes.push_back(extractQuadMesh(sheet.volume));
+    // Each sheet alone keeps its boundary loops (the junction ring is one of them). The rim's
+    // sheets are manifold and consistently oriented; the disc still has a few edges where the
+    // strip around its holes next to the junction overlaps (see the extraction notes).
+    const test::MeshTopology topology = test::meshTopology(meshes.back());
+    EXPECT_EQ(topology.boundaryLoops, sheet.sheet.boundaryLoops.size());
+    if (meshes.size() <= 2) {
+      EXPECT_EQ(topology.nonManifoldEdges, 0u);
+      EXPECT_EQ(topology.inconsistentEdges, 0u);
+    }
+    EXPECT_LE(topology.nonManifoldEdges, 13u);  // measured 13 (disc)
+    std::set<Point3> points;
+    for (std::size_t p = 0; p < meshes.back().points.size(); ++p)
+      if (meshes.back().constraints[p].role == PointRole::Junction)
+        points.insert(meshes.back().points[p]);
+    junctionPoints.push_back(points);
+  }
+  // The same junction nodes on all three sides, about one per voxel along the 168-edge ring.
+  EXPECT_GT(junctionPoints[0].size(), 150u);
+  EXPECT_EQ(junctionPoints[0], junctionPoints[1]);
+  EXPECT_EQ(junctionPoints[0], junctionPoints[2]);
+
+  const QuadMesh joined = joinAtJunctions(meshes);
+  const test::MeshTopology topology = test::meshTopology(joined);
+  // The junction ring: one edge per pair of neighbouring junction nodes, three faces each, and
+  // the three sheets one connected mesh again.
+  const test::MeshTopology discTopology = test::meshTopology(meshes[2]);
+  EXPECT_EQ(topology.nonManifoldEdges, junctionPoints[0].size() + discTopology.nonManifoldEdges);
+  EXPECT_EQ(topology.components, 1u);
+  // Every point of the original junction curve lies on the new ring (within the strip's
+  // tolerance of 0.2 voxel), so the T-junction stays where it was and connected.
+  const auto ring = nonManifoldSegments(joined);
+  const double voxel = volumes[0].volume.info().voxelSize;
+  const Sheet& disc = volumes[2].sheet;
+  double worst = 0.0;
+  for (const PointIndex p : disc.junctionCurves[0].points)
+    worst = std::max(worst, test::distanceToSegments(disc.points[p], ring));
+  EXPECT_LT(worst, 0.2 * voxel + 1e-9);
+  // The input's 25 boundary loops of the sheets (rim ends and the disc's holes, the junction ring
+  // not counted) are all kept.
+  std::size_t inputLoops = 0;
+  for (const SheetVolume& sheet : volumes) inputLoops += sheet.sheet.boundaryLoops.size();
+  EXPECT_EQ(topology.boundaryLoops, inputLoops - 3 * 1);
+}
+
+}  // namespace
+}  // namespace voxremesh
