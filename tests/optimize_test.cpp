@@ -696,3 +696,22 @@ TEST(Junction, PointsSurviveEveryStepUnchanged) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(RelaxMesh, CurveEndsDoNotSlideTowardsCornersOffTheirCurve) {
+  // A feature line along row 2 from (1, 2) to (3, 2); the Corner at (1, 3) ends another line and
+  // is joined to the first point by an edge across the surface, not along the feature line.
+  QuadMesh mesh = grid(4);
+  voxremesh::MeshCurve line;
+  line.points = {{1.0, 2.0, 0.0}, {3.0, 2.0, 0.0}};
+  mesh.curves.push_back(line);
+  for (CornerIndex v : {11u, 12u, 13u}) mesh.constraints[v] = {PointRole::Feature, 1};
+  mesh.constraints[16] = {PointRole::Corner, voxremesh::kNoCurve};
+  const auto end = mesh.points[11];
+  voxremesh::relaxMesh(mesh, ReferenceSurface(grid(4)), 10, 0.5, 1.0);
+  EXPECT_EQ(mesh.points[11], end);
+  EXPECT_EQ(mesh.points[16], (std::array<double, 3>{1.0, 3.0, 0.0}));
+}
+
+}  // namespace

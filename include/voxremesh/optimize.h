@@ -72,7 +72,8 @@ std::size_t collapseRhombicQuads(QuadMesh& mesh, const ReferenceSurface* surface
 /// neighbours only along the line joining them (the outline does not shrink), and not at all
 /// where the boundary turns by more than 30 degrees there; then it is projected on `original`.
 /// A curve point with exactly two neighbours on its curve (along boundary edges for Boundary
-/// points, else along edges to points of the same curve or to Corners) moves towards their
+/// points, else along edges to points of the same curve or to Corners that run along the curve:
+/// the edge's midpoint within a tenth of its length of the curve) moves towards their
 /// midpoint and then to the closest point of its curve; Corner and Junction points stay.
 /// @param original    the surface to stay on, not empty
 /// @param iterations  >= 0

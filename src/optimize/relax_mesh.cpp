@@ -22,6 +22,9 @@ namespace {
 /// SheetSettings::cornerAngleDeg makes such points Corners where the sheets are built).
 constexpr double kBoundaryCornerDeg = 30.0;
 
+/// An edge runs along a curve when its midpoint is within this fraction of its length of the curve.
+constexpr double kAlongCurveTolerance = 0.1;
+
 /// The largest stable damping (see relaxMesh).
 constexpr double kMaxDamping = 0.7;
 
@@ -34,7 +37,8 @@ std::vector<CornerIndex> boundaryNeighbours(const opt::Topology& t, CornerIndex 
 }
 
 /// The neighbours of v along its curve: along boundary edges for a Boundary point or a Free point
-/// on the boundary, else along edges to points of the same curve or to Corners.
+/// on the boundary, else along edges to points of the same curve or to Corners whose midpoint
+/// lies on the curve (kAlongCurveTolerance).
 std::vector<CornerIndex> curveNeighbours(const QuadMesh& mesh, const opt::Topology& t,
                                          CornerIndex v) {
   const PointRole role = opt::roleOf(mesh, v);
@@ -42,10 +46,18 @@ std::vector<CornerIndex> curveNeighbours(const QuadMesh& mesh, const opt::Topolo
     return boundaryNeighbours(t, v);
   std::vector<CornerIndex> result;
   if (role == PointRole::Free || role == PointRole::Corner) return result;
+  const MeshCurve& curve = mesh.curves[mesh.constraints[v].curve];
   for (const std::uint32_t* w = t.nbrsBegin(v); w != t.nbrsEnd(v); ++w) {
     const PointRole other = opt::roleOf(mesh, *w);
-    if (other == PointRole::Corner ||
-        (other != PointRole::Free && mesh.constraints[*w].curve == mesh.constraints[v].curve))
+    if (other != PointRole::Corner &&
+        (other == PointRole::Free || mesh.constraints[*w].curve != mesh.constraints[v].curve))
+      continue;
+    // The edge must run along the curve: a Corner (or a point of the curve) reached across the
+    // surface, e.g. the end of another feature line, is no neighbour along this one.
+    const Vec3 middle = (mesh.points[v] + mesh.points[*w]) * 0.5;
+    const Vec3 onCurve = closestPointOnPolyline(curve.points, curve.closed, middle);
+    if (distance(middle, onCurve) <=
+        kAlongCurveTolerance * distance(mesh.points[v], mesh.points[*w]))
       result.push_back(*w);
   }
   return result;
