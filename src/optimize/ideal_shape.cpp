@@ -27,27 +27,30 @@ std::array<Vec3, 4> idealCorners(const QuadMesh& mesh, const std::array<CornerIn
   if (!(norm(u) > 0.0)) return p;
   u = normalized(u);
   const Vec3 w = cross(z, u);
-  // Regular polygon corners s_k at angles phase + k * 2 pi / n (counter-clockwise about z), radius
-  // r; the best rotation theta maximises sum s_k(theta) . q_k, q_k the projected corners.
-  const double pi = 3.14159265358979323846;
-  const double step = 2.0 * pi / n;
-  const double radius = edgeLength / (2.0 * std::sin(pi / n));
+  // Regular polygon corners s_k at angles a_k + theta, a_k = k * 2 pi / n (counter-clockwise
+  // about z), radius r; the best rotation theta maximises sum s_k(theta) . q_k (q_k the projected
+  // corners): (cos theta, sin theta) is the unit vector of (sum x cos a + y sin a,
+  // sum y cos a - x sin a).
+  static const double kCos4[4] = {1.0, 0.0, -1.0, 0.0}, kSin4[4] = {0.0, 1.0, 0.0, -1.0};
+  static const double kCos3[3] = {1.0, -0.5, -0.5};
+  static const double kSin3[3] = {0.0, 0.8660254037844386, -0.8660254037844386};
+  const double* cosA = n == 4 ? kCos4 : kCos3;
+  const double* sinA = n == 4 ? kSin4 : kSin3;
+  // Circumradius: edge / (2 sin(pi / n)), sin(pi / 4) = 1 / sqrt 2, sin(pi / 3) = sqrt 3 / 2.
+  const double radius = n == 4 ? edgeLength * 0.7071067811865476 : edgeLength * 0.5773502691896258;
   double c = 0.0, s = 0.0;
   for (int k = 0; k < n; ++k) {
     const Vec3 q = p[static_cast<std::size_t>(k)] - centroid;
     const double x = dot(q, u), y = dot(q, w);
-    const double angle = k * step;
-    // s_k(theta) = r (cos(angle + theta), sin(angle + theta)); d/dtheta of the sum vanishes at
-    // theta = atan2(sum (y cos a - x sin a), sum (x cos a + y sin a)).
-    c += x * std::cos(angle) + y * std::sin(angle);
-    s += y * std::cos(angle) - x * std::sin(angle);
+    c += x * cosA[k] + y * sinA[k];
+    s += y * cosA[k] - x * sinA[k];
   }
-  const double theta = std::atan2(s, c);
+  const double length = std::hypot(c, s);
+  const double cosT = length > 0.0 ? c / length : 1.0, sinT = length > 0.0 ? s / length : 0.0;
   std::array<Vec3, 4> result = p;
   for (int k = 0; k < n; ++k) {
-    const double angle = k * step + theta;
-    result[static_cast<std::size_t>(k)] =
-        centroid + u * (radius * std::cos(angle)) + w * (radius * std::sin(angle));
+    const double cosK = cosA[k] * cosT - sinA[k] * sinT, sinK = sinA[k] * cosT + cosA[k] * sinT;
+    result[static_cast<std::size_t>(k)] = centroid + u * (radius * cosK) + w * (radius * sinK);
   }
   return result;
 }
