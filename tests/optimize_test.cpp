@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <random>
 #include <set>
@@ -422,6 +424,7 @@ TEST(RelaxMesh, EqualisesAJitteredCylinderAndStaysOnIt) {
   EXPECT_THROW(voxremesh::relaxMesh(mesh, ReferenceSurface{}, 1, 0.5), std::invalid_argument);
   EXPECT_THROW(voxremesh::relaxMesh(mesh, fine, 1, 0.0), std::invalid_argument);
   EXPECT_THROW(voxremesh::relaxMesh(mesh, fine, 1, 0.9), std::invalid_argument);
+  EXPECT_THROW(voxremesh::relaxMesh(mesh, fine, 1, 0.5, -1.0), std::invalid_argument);
 }
 
 TEST(RelaxMesh, UnconstrainedBoundaryPointsSlideAlongTheBoundary) {
@@ -589,18 +592,126 @@ TEST(OptimizeQuadMesh, BracketImprovesKeepsItsHolesAndIsThreadIndependent) {
   EXPECT_EQ(
       std::memcmp(one.points.data(), two.points.data(), one.points.size() * sizeof(one.points[0])),
       0);
-  // Where the optimisation stands on the bracket (bench_optimize prints the details): better than
-  // the extraction, triangles under 3 %, every hole and the outer contour kept.
+  // Where the optimisation stands on the bracket (bench_optimize prints the details): 9.8 % of the
+  // elements fail a default criterion (the extraction 25.5 %; issue 5's goal is 1 %: most failures
+  // are quads of the extraction's boundary strip), triangles under 3 %, every hole and the outer
+  // contour kept.
   voxremesh::QualitySettings quality;
   quality.targetSize = 4.5;
   const auto before = voxremesh::assessQuality(extracted, quality, &input);
   const auto after = voxremesh::assessQuality(one, quality, &input);
-  EXPECT_LT(after.failingAnyShare, 0.6 * before.failingAnyShare);
+  EXPECT_LT(after.failingAnyShare, 0.45 * before.failingAnyShare);
+  EXPECT_LT(after.failingAnyShare, 0.11);
   EXPECT_LT(after.triangleShare, 0.03);
   EXPECT_LT(after.criteria[static_cast<int>(voxremesh::Criterion::Warping)].share, 0.025);
   EXPECT_LT(after.distance->meanToOriginal, 0.1 * 4.5);
   EXPECT_EQ(boundaryLoops(input), 12u);
   EXPECT_EQ(boundaryLoops(one), boundaryLoops(input));
+}
+
+}  // namespace
+
+namespace {
+
+/// The positions of the Junction points of a mesh, sorted (indices change with topology steps).
+std::vector<std::array<double, 3>> junctionPositions(const QuadMesh& mesh) {
+  std::vector<std::array<double, 3>> result;
+  for (std::size_t v = 0; v < mesh.points.size(); ++v)
+    if (mesh.constraints[v].role == PointRole::Junction) result.push_back(mesh.points[v]);
+  std::sort(result.begin(), result.end());
+  return result;
+}
+
+/// A 6 x 6 grid whose middle row j = 3 is a junction curve (curve 1, shared with another sheet),
+/// with defects that every step would fix by moving or merging a point: the junction row lifted
+/// and jittered (warped quads), a Free point on a junction point (a zero-area quad), a doublet and
+/// a split quad beside the junction, Free points jittered.
+QuadMesh junctionGrid() {
+  const int n = 6;
+  QuadMesh mesh = grid(n);
+  auto id = [n](int i, int j) { return static_cast<CornerIndex>(j * (n + 1) + i); };
+  voxremesh::MeshCurve seam;
+  seam.role = PointRole::Junction;
+  for (int i = 1; i < n; ++i) {
+    auto& p = mesh.points[id(i, 3)];
+    p[2] = (i % 2 ? 0.3 : -0.3);
+    p[0] += 0.1 * (i % 3);
+    seam.points.push_back(p);
+    mesh.constraints[id(i, 3)] = {PointRole::Junction, 1};
+  }
+  mesh.curves.push_back(seam);
+  for (int j = 1; j < n; ++j)
+    for (int i = 1; i < n; ++i)
+      if (j != 3) mesh.points[id(i, j)][0] += 0.15 * ((i * 7 + j * 3) % 5 - 2) / 2.0;
+  mesh.points[id(2, 2)] = mesh.points[id(2, 3)];  // a Free point on a junction point
+  // A doublet at the centroid of the quad right of (3, 3), and that quad's neighbour split.
+  const std::size_t f = 3 * n + 3;
+  const auto g = mesh.faces[f];
+  const CornerIndex c = addPoint(mesh, {3.5, 3.5, 0.0});
+  mesh.faces[f] = {g[0], g[1], g[2], c};
+  mesh.faces.push_back({g[2], g[3], g[0], c});
+  const auto h = mesh.faces[f + 1];
+  mesh.faces[f + 1] = {h[0], h[1], h[2], kNoCorner};
+  mesh.faces.push_back({h[0], h[2], h[3], kNoCorner});
+  return mesh;
+}
+
+TEST(Junction, PointsSurviveEveryStepUnchanged) {
+  const QuadMesh start = junctionGrid();
+  const auto expected = junctionPositions(start);
+  ASSERT_EQ(expected.size(), 5u);
+  const ReferenceSurface surface(start);
+  voxremesh::QualitySettings quality;
+  quality.targetSize = 1.0;
+  voxremesh::CleanupSettings cleanup;
+  cleanup.zeroArea = 1e-6;
+  cleanup.shortEdge = 0.3;
+  const std::vector<std::pair<const char*, std::function<void(QuadMesh&)>>> steps = {
+      {"removeWarping", [](QuadMesh& m) { voxremesh::removeWarping(m, 1.0); }},
+      {"collapseRhombicQuads", [&](QuadMesh& m) { voxremesh::collapseRhombicQuads(m, &surface); }},
+      {"relaxMesh", [&](QuadMesh& m) { voxremesh::relaxMesh(m, surface, 20); }},
+      {"cleanUpMesh", [&](QuadMesh& m) { voxremesh::cleanUpMesh(m, cleanup); }},
+      {"mergeTrianglePairs", [&](QuadMesh& m) { voxremesh::mergeTrianglePairs(m, quality); }},
+      {"optimizeQuadMesh", [&](QuadMesh& m) { voxremesh::optimizeQuadMesh(m, surface); }},
+  };
+  for (const auto& [name, step] : steps) {
+    QuadMesh mesh = start;
+    step(mesh);
+    EXPECT_EQ(junctionPositions(mesh), expected) << name;
+    // Every junction point is still used by a face.
+    std::vector<std::uint8_t> used(mesh.points.size(), 0);
+    for (const auto& face : mesh.faces)
+      for (int k = 0; k < voxremesh::cornerCount(face); ++k) used[face[k]] = 1;
+    for (std::size_t v = 0; v < mesh.points.size(); ++v) {
+      if (mesh.constraints[v].role == PointRole::Junction) {
+        EXPECT_TRUE(used[v]) << name << " " << v;
+      }
+    }
+  }
+  // The clean-up did fix the defect beside the junction: the zero-length edge is gone.
+  QuadMesh cleaned = start;
+  const voxremesh::CleanupResult result = voxremesh::cleanUpMesh(cleaned, cleanup);
+  EXPECT_GE(result.zeroAreaFaces + result.shortEdges, 1u);
+  EXPECT_EQ(cleaned.points.size(), start.points.size() - 2);  // the merged point, the doublet
+}
+
+}  // namespace
+
+namespace {
+
+TEST(RelaxMesh, CurveEndsDoNotSlideTowardsCornersOffTheirCurve) {
+  // A feature line along row 2 from (1, 2) to (3, 2); the Corner at (1, 3) ends another line and
+  // is joined to the first point by an edge across the surface, not along the feature line.
+  QuadMesh mesh = grid(4);
+  voxremesh::MeshCurve line;
+  line.points = {{1.0, 2.0, 0.0}, {3.0, 2.0, 0.0}};
+  mesh.curves.push_back(line);
+  for (CornerIndex v : {11u, 12u, 13u}) mesh.constraints[v] = {PointRole::Feature, 1};
+  mesh.constraints[16] = {PointRole::Corner, voxremesh::kNoCurve};
+  const auto end = mesh.points[11];
+  voxremesh::relaxMesh(mesh, ReferenceSurface(grid(4)), 10, 0.5, 1.0);
+  EXPECT_EQ(mesh.points[11], end);
+  EXPECT_EQ(mesh.points[16], (std::array<double, 3>{1.0, 3.0, 0.0}));
 }
 
 }  // namespace

@@ -2,12 +2,14 @@
 // quality criteria (Bidmon et al., Sect. 5), one function per step (src/optimize/, a file each)
 // and a driver running them in order.
 //
-// Constraints (quad_mesh.h) hold in every step: Corner points never move; Feature, Boundary and
-// Junction points move only along mesh.curves[constraint.curve] (each new position is the closest
-// point of that curve); Free points move on the surface (relaxation projects them on the
-// original; warping removal takes them off it by at most its maxMove). Topology steps never merge
-// a Corner point into another point, and merge a constrained point only into a point of the same
-// curve or into a Corner.
+// Constraints (quad_mesh.h) hold in every step: Corner and Junction points never move (a Junction
+// point is on a curve shared with another sheet or part, whose mesh uses the same nodes: moving
+// or removing it would break the conforming seam); Feature and Boundary points move only along
+// mesh.curves[constraint.curve] (each new position is the closest point of that curve); Free
+// points move on the surface (relaxation projects them on the original; warping removal takes
+// them off it by at most its maxMove). Topology steps never merge a Corner or Junction point into
+// another point (other points may merge into them; they keep their place), and merge a Feature or
+// Boundary point only into a point of the same curve or into a Corner or Junction point.
 // Every step is deterministic: the result does not depend on the number of TBB threads.
 //
 // Preconditions of every step (std::invalid_argument otherwise): coordinates are finite; every
@@ -59,25 +61,28 @@ WarpingResult removeWarping(QuadMesh& mesh, double maxWarpingDeg, int maxIterati
 /// Throws std::invalid_argument for a mesh that breaks the preconditions.
 std::size_t collapseRhombicQuads(QuadMesh& mesh, const ReferenceSurface* surface = nullptr);
 
-/// Relaxation: tangential smoothing that equalises element sizes and angles. Per iteration
-/// (Jacobi: all targets from the previous positions), a Free point moves `damping` of the way to
-/// the mean of the area-weighted mean of its faces' centroids (equal sizes) and the mean of the
-/// points that would make each of its quads a parallelogram (equal corner Jacobians), minus the
-/// part of the move along its normal, and is then
+/// Relaxation: tangential smoothing towards well-shaped elements of the target size. Per
+/// iteration (Jacobi: all targets from the previous positions), every face gets its ideal shape:
+/// the square (quad) or equilateral triangle with edge `targetSize` (0: of the face's own area)
+/// that best fits its corners (centred on its centroid, in its plane, turned to fit in the
+/// least-squares sense). A Free point moves `damping` of the way to the mean of the positions its
+/// faces' ideal shapes give it, minus the part of the move along its normal, and is then
 /// projected on `original` (the closest point of the original surface, not of the previous
 /// iterate). A Free point on the mesh boundary moves towards the midpoint of its two boundary
 /// neighbours only along the line joining them (the outline does not shrink), and not at all
 /// where the boundary turns by more than 30 degrees there; then it is projected on `original`.
 /// A curve point with exactly two neighbours on its curve (along boundary edges for Boundary
-/// points, else along edges to points of the same curve or to Corners) moves towards their
-/// midpoint and then to the closest point of its curve; Corner points stay.
+/// points, else along edges to points of the same curve or to Corners that run along the curve:
+/// the edge's midpoint within a tenth of its length of the curve) moves towards their
+/// midpoint and then to the closest point of its curve; Corner and Junction points stay.
 /// @param original    the surface to stay on, not empty
 /// @param iterations  >= 0
-/// @param damping     in (0, 0.7]: the Jacobi update of the parallelogram targets oscillates
-///                    above that (on the bracket at 0.9 the mesh folds within 30 iterations)
+/// @param damping     in (0, 0.7]: the Jacobi update oscillates above that
+/// @param targetSize  the edge length of the ideal shapes, finite and >= 0 (0: per face, from its
+///                    area)
 /// Throws std::invalid_argument for an empty surface, bad parameters or a bad mesh.
 void relaxMesh(QuadMesh& mesh, const ReferenceSurface& original, int iterations = 10,
-               double damping = 0.5);
+               double damping = 0.5, double targetSize = 0.0);
 
 /// What cleanUpMesh removed.
 struct CleanupResult {
@@ -105,8 +110,8 @@ struct CleanupSettings {
 /// one (two quads -> a quad, a quad and a triangle -> a triangle, two triangles -> nothing).
 /// Constrained points in doublets are kept; (3) when settings.foldedCurves, faces folded along a
 /// curve: three consecutive
-/// corners a, b, c on one curve (b a Feature/Boundary/Junction point, a and c on its curve or
-/// Corners) with an interior angle above 150 degrees at b: b merges into the nearer of a and c
+/// corners a, b, c on one curve (b a Feature/Boundary point, a and c on its curve or Corners or
+/// Junctions) with an interior angle above 150 degrees at b: b merges into the nearer of a and c
 /// (a quad becomes a triangle, a triangle vanishes; the constraint rules above apply). Rounds
 /// repeat until nothing changes. Unused points are removed at the end (indices of points change;
 /// order is kept).

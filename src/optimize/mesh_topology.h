@@ -21,9 +21,13 @@ using geom::Vec3;
 /// empty curve.
 void checkMesh(const QuadMesh& mesh);
 
-/// The role of point v (Free when the mesh has no constraints).
+/// The role of point v as the optimisation steps treat it: Free when the mesh has no
+/// constraints; a Junction point is a Corner (fixed and never merged into another point, so that
+/// the meshes of two sheets sharing the junction curve stay conforming).
 inline PointRole roleOf(const QuadMesh& mesh, CornerIndex v) {
-  return mesh.constraints.empty() ? PointRole::Free : mesh.constraints[v].role;
+  if (mesh.constraints.empty()) return PointRole::Free;
+  const PointRole role = mesh.constraints[v].role;
+  return role == PointRole::Junction ? PointRole::Corner : role;
 }
 
 /// The connectivity of a mesh at one moment. Lists are ascending.

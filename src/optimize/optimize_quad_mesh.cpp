@@ -65,7 +65,7 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
   };
   auto relax = [&] {
     const Clock::time_point t = Clock::now();
-    relaxMesh(mesh, original, settings.relaxIterations, settings.relaxDamping);
+    relaxMesh(mesh, original, settings.relaxIterations, settings.relaxDamping, quality.targetSize);
     s.relaxSeconds += secondsSince(t);
   };
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "optimize/ideal_shape.h"
 #include "optimize/mesh_topology.h"
 #include "voxremesh/optimize.h"
 
@@ -21,6 +22,9 @@ namespace {
 /// SheetSettings::cornerAngleDeg makes such points Corners where the sheets are built).
 constexpr double kBoundaryCornerDeg = 30.0;
 
+/// An edge runs along a curve when its midpoint is within this fraction of its length of the curve.
+constexpr double kAlongCurveTolerance = 0.1;
+
 /// The largest stable damping (see relaxMesh).
 constexpr double kMaxDamping = 0.7;
 
@@ -33,7 +37,8 @@ std::vector<CornerIndex> boundaryNeighbours(const opt::Topology& t, CornerIndex 
 }
 
 /// The neighbours of v along its curve: along boundary edges for a Boundary point or a Free point
-/// on the boundary, else along edges to points of the same curve or to Corners.
+/// on the boundary, else along edges to points of the same curve or to Corners whose midpoint
+/// lies on the curve (kAlongCurveTolerance).
 std::vector<CornerIndex> curveNeighbours(const QuadMesh& mesh, const opt::Topology& t,
                                          CornerIndex v) {
   const PointRole role = opt::roleOf(mesh, v);
@@ -41,51 +46,52 @@ std::vector<CornerIndex> curveNeighbours(const QuadMesh& mesh, const opt::Topolo
     return boundaryNeighbours(t, v);
   std::vector<CornerIndex> result;
   if (role == PointRole::Free || role == PointRole::Corner) return result;
+  const MeshCurve& curve = mesh.curves[mesh.constraints[v].curve];
   for (const std::uint32_t* w = t.nbrsBegin(v); w != t.nbrsEnd(v); ++w) {
-    const PointConstraint& o = mesh.constraints[*w];
-    if (o.role == PointRole::Corner ||
-        (o.role != PointRole::Free && o.curve == mesh.constraints[v].curve))
+    const PointRole other = opt::roleOf(mesh, *w);
+    if (other != PointRole::Corner &&
+        (other == PointRole::Free || mesh.constraints[*w].curve != mesh.constraints[v].curve))
+      continue;
+    // The edge must run along the curve: a Corner (or a point of the curve) reached across the
+    // surface, e.g. the end of another feature line, is no neighbour along this one.
+    const Vec3 middle = (mesh.points[v] + mesh.points[*w]) * 0.5;
+    const Vec3 onCurve = closestPointOnPolyline(curve.points, curve.closed, middle);
+    if (distance(middle, onCurve) <=
+        kAlongCurveTolerance * distance(mesh.points[v], mesh.points[*w]))
       result.push_back(*w);
   }
   return result;
 }
 
-/// The smoothing target of a Free point: the mean of (1) the area-weighted mean of its faces'
-/// centroids (equalises sizes) and (2) the mean over its quads (v, a, d, b) of a + b - d, the
-/// position that makes each quad a parallelogram (equalises the corner Jacobians and tapers);
-/// (1) alone without quads. The part of the move along the point's normal (the sum of its faces'
-/// normals) is removed.
-Vec3 freeTarget(const QuadMesh& mesh, const opt::Topology& t, CornerIndex v) {
-  Vec3 sum{0.0, 0.0, 0.0}, normal{0.0, 0.0, 0.0}, parallelogram{0.0, 0.0, 0.0};
-  double weight = 0.0;
-  int quads = 0;
+/// The edge length of a face's ideal shape: targetSize when > 0, else the edge of the square or
+/// equilateral triangle of the face's area.
+double idealEdge(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face, double targetSize) {
+  if (targetSize > 0.0) return targetSize;
+  const double area = opt::faceArea(mesh, face);
+  return cornerCount(face) == 4 ? std::sqrt(area) : std::sqrt(area * 4.0 / std::sqrt(3.0));
+}
+
+/// The shape target of a Free point: the mean of the positions its faces' ideal shapes
+/// (idealCorners) give it, minus the part of the move along its normal.
+Vec3 idealTarget(const QuadMesh& mesh, const opt::Topology& t,
+                 const std::vector<std::array<Vec3, 4>>& ideal, CornerIndex v) {
+  Vec3 sum{0.0, 0.0, 0.0}, normal{0.0, 0.0, 0.0};
+  int count = 0;
+  const auto& p = mesh.points;
   for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f) {
     const auto& face = mesh.faces[*f];
     const int n = cornerCount(face);
-    if (n == 4) {
-      std::size_t k = 0;
-      while (face[k] != v) ++k;
-      parallelogram = parallelogram + mesh.points[face[(k + 1) % 4]] +
-                      mesh.points[face[(k + 3) % 4]] - mesh.points[face[(k + 2) % 4]];
-      ++quads;
-    }
-    Vec3 centroid{0.0, 0.0, 0.0};
-    for (int k = 0; k < n; ++k)
-      centroid = centroid + mesh.points[face[static_cast<std::size_t>(k)]];
-    centroid = centroid * (1.0 / n);
-    const double area = opt::faceArea(mesh, face);
-    sum = sum + centroid * area;
-    weight += area;
-    const auto& p = mesh.points;
+    std::size_t k = 0;
+    while (face[k] != v) ++k;
+    sum = sum + ideal[*f][k];
+    ++count;
     normal = normal + (n == 3 ? cross(p[face[1]] - p[face[0]], p[face[2]] - p[face[0]])
                               : cross(p[face[2]] - p[face[0]], p[face[3]] - p[face[1]]));
   }
-  if (!(weight > 0.0)) return mesh.points[v];
-  Vec3 target = sum * (1.0 / weight);
-  if (quads > 0) target = (target + parallelogram * (1.0 / quads)) * 0.5;
-  const Vec3 move = target - mesh.points[v];
+  if (count == 0) return p[v];
+  const Vec3 move = sum * (1.0 / count) - p[v];
   const Vec3 unit = normalized(normal);
-  return mesh.points[v] + move - unit * dot(move, unit);
+  return p[v] + move - unit * dot(move, unit);
 }
 
 /// The closest point of `original` to q; `hint` is the face of the point's previous projection
@@ -99,13 +105,13 @@ Vec3 project(const ReferenceSurface& original, const Vec3& q, std::uint32_t& hin
 /// The new position of point v in one relaxation step (see relaxMesh); `along` holds its curve
 /// or boundary neighbours, `hint` the face of its previous projection on `original`.
 Vec3 relaxed(const QuadMesh& mesh, const opt::Topology& t, const ReferenceSurface& original,
-             const std::vector<CornerIndex>& along, CornerIndex v, double damping,
-             std::uint32_t& hint) {
+             const std::vector<std::array<Vec3, 4>>& ideal, const std::vector<CornerIndex>& along,
+             CornerIndex v, double damping, std::uint32_t& hint) {
   const Vec3& p = mesh.points[v];
   const PointRole role = opt::roleOf(mesh, v);
   if (t.faceCount(v) == 0 || role == PointRole::Corner) return p;
   if (role == PointRole::Free && !t.boundary[v])
-    return project(original, p + (freeTarget(mesh, t, v) - p) * damping, hint);
+    return project(original, p + (idealTarget(mesh, t, ideal, v) - p) * damping, hint);
   if (along.size() != 2) return role == PointRole::Free ? p : opt::constrainedPosition(mesh, v, p);
   const Vec3& a = mesh.points[along[0]];
   const Vec3& b = mesh.points[along[1]];
@@ -122,9 +128,13 @@ Vec3 relaxed(const QuadMesh& mesh, const opt::Topology& t, const ReferenceSurfac
 
 }  // namespace
 
-void relaxMesh(QuadMesh& mesh, const ReferenceSurface& original, int iterations, double damping) {
+void relaxMesh(QuadMesh& mesh, const ReferenceSurface& original, int iterations, double damping,
+               double targetSize) {
   if (original.empty()) throw std::invalid_argument("relaxMesh: the original surface is empty");
   if (iterations < 0) throw std::invalid_argument("relaxMesh: negative iteration count");
+  if (!std::isfinite(targetSize) || targetSize < 0.0)
+    throw std::invalid_argument("relaxMesh: target size " + std::to_string(targetSize) +
+                                " is not finite and >= 0");
   if (!(damping > 0.0 && damping <= kMaxDamping))
     throw std::invalid_argument("relaxMesh: damping " + std::to_string(damping) +
                                 " is not in (0, 0.7]");
@@ -135,11 +145,18 @@ void relaxMesh(QuadMesh& mesh, const ReferenceSurface& original, int iterations,
   for (CornerIndex v = 0; v < count; ++v) along[v] = curveNeighbours(mesh, topology, v);
   std::vector<Vec3> next(count);
   std::vector<std::uint32_t> hints(count, kNoCorner);
+  std::vector<std::array<Vec3, 4>> ideal(mesh.faces.size());
   for (int iteration = 0; iteration < iterations; ++iteration) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ideal.size(), 64),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t f = r.begin(); f < r.end(); ++f)
+                          ideal[f] = opt::idealCorners(mesh, mesh.faces[f],
+                                                       idealEdge(mesh, mesh.faces[f], targetSize));
+                      });
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 64),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t v = r.begin(); v < r.end(); ++v)
-                          next[v] = relaxed(mesh, topology, original, along[v],
+                          next[v] = relaxed(mesh, topology, original, ideal, along[v],
                                             static_cast<CornerIndex>(v), damping, hints[v]);
                       });
     mesh.points.swap(next);
