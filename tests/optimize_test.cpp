@@ -592,16 +592,17 @@ TEST(OptimizeQuadMesh, BracketImprovesKeepsItsHolesAndIsThreadIndependent) {
   EXPECT_EQ(
       std::memcmp(one.points.data(), two.points.data(), one.points.size() * sizeof(one.points[0])),
       0);
-  // Where the optimisation stands on the bracket (bench_optimize prints the details): 9.8 % of the
-  // elements fail a default criterion (the extraction 25.5 %; issue 5's goal is 1 %: most failures
-  // are quads of the extraction's boundary strip), triangles under 3 %, every hole and the outer
-  // contour kept.
+  // Where the optimisation stands on the bracket (bench_optimize prints the details): 11.8 % of
+  // the elements fail a default criterion with the Jacobian ratio at the corners (6.5 % at the
+  // Gauss points; the input deck itself fails 25 % and 8.2 %; the extraction 28 %; issue 5's goal
+  // is 1 %: most failures are next to small holes and the boundary), triangles under 3 %, every
+  // hole and the outer contour kept.
   voxremesh::QualitySettings quality;
   quality.targetSize = 4.5;
   const auto before = voxremesh::assessQuality(extracted, quality, &input);
   const auto after = voxremesh::assessQuality(one, quality, &input);
   EXPECT_LT(after.failingAnyShare, 0.45 * before.failingAnyShare);
-  EXPECT_LT(after.failingAnyShare, 0.11);
+  EXPECT_LT(after.failingAnyShare, 0.125);
   EXPECT_LT(after.triangleShare, 0.03);
   EXPECT_LT(after.criteria[static_cast<int>(voxremesh::Criterion::Warping)].share, 0.025);
   EXPECT_LT(after.distance->meanToOriginal, 0.1 * 4.5);

@@ -181,10 +181,11 @@ TEST(ElementFailures, JacobianAtCornersOrGaussPoints) {
   voxremesh::QualitySettings s;
   s.targetSize = 1.0;
   const std::uint32_t jacobian = 1u << static_cast<int>(Criterion::JacobianRatio);
-  EXPECT_TRUE(s.jacobianAtGaussPoints);  // the default, as HyperMesh's
+  EXPECT_FALSE(s.jacobianAtGaussPoints);  // the default: at the corners, as DESIGN.md
+  EXPECT_EQ(voxremesh::elementFailures(q, 4, s) & jacobian, jacobian);
+  s.jacobianAtGaussPoints = true;  // HyperMesh's default, milder
   EXPECT_EQ(voxremesh::elementFailures(q, 4, s) & jacobian, 0u);
   s.jacobianAtGaussPoints = false;
-  EXPECT_EQ(voxremesh::elementFailures(q, 4, s) & jacobian, jacobian);
   // Its 45-degree corners pass a minimum of 44 and fail one of 50.
   const std::uint32_t minAngle = 1u << static_cast<int>(Criterion::QuadMinAngle);
   s.minQuadAngleDeg = 44.0;

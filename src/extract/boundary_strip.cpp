@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "extract/polyline_param.h"
+#include "extract/strip_zip.h"
 #include "model/shell_edges.h"
 
 namespace voxremesh::extract {
@@ -173,13 +174,13 @@ TargetLoop joinLoops(const QuadMesh& mesh, const std::vector<std::uint32_t>& cur
   return target;
 }
 
-/// A node of the strip's outer side: its arc length on the loop, and the dual vertex it pairs
-/// with (or none for a corner that needs a node of its own).
+/// A node of the strip's outer side: its arc length on the loop (relative to the strip's base),
+/// what prescribes it, and for a junction node its index in JunctionStretches::nodes.
 struct OuterNode {
+  enum class Kind : std::uint8_t { Plain, Corner, Junction };
   double param = 0.0;
-  std::size_t fromDual = std::numeric_limits<std::size_t>::max();
-  bool corner = false;
-  std::size_t junctionNode = std::numeric_limits<std::size_t>::max();  ///< index of a JunctionNode
+  Kind kind = Kind::Plain;
+  std::size_t junctionNode = std::numeric_limits<std::size_t>::max();
 };
 
 /// A node the junction curves prescribe on the target loop.
@@ -274,13 +275,14 @@ void addFarVertices(const PolylineParam& loop, double s0, double s1, double tole
 }
 
 void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
-                const TargetLoop& target, const JunctionNodes& junctions, double tolerance,
+                const std::vector<Vec3d>& normals, const TargetLoop& target,
+                const JunctionNodes& junctions, double spacing, double tolerance,
                 StripStats& stats) {
   const PolylineParam loop(target.points, true);
   const JunctionStretches stretches(target, loop, junctions);
-  const std::vector<double>& cornerParams = target.cornerParams;
   const std::size_t m = dualLoop.size();
   const double length = loop.length();
+  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
   // Closest-point arc lengths, unwrapped from the dual vertex closest to the loop.
   std::vector<double> t(m), distance(m);
   for (std::size_t i = 0; i < m; ++i)
@@ -299,7 +301,9 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
   for (std::size_t i = 0; i < m; ++i)
     dualArc[i + 1] =
         dualArc[i] + (toVec(mesh.points[a[(i + 1) % m]]) - toVec(mesh.points[a[i]])).length();
-  // Keep the longest increasing run; space the others by the dual loop's arc length.
+  // Where each dual vertex lies along the loop, made monotone: the longest increasing run of the
+  // closest-point arc lengths, the others spaced by the dual loop's own arc length. This only
+  // centres the search of the zip.
   u[0] = 0.0;
   std::vector<std::size_t> run = longestIncreasingRun(u);
   if (run.empty() || run.front() != 0) run.insert(run.begin(), 0);
@@ -312,116 +316,106 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
     for (std::size_t i = i0 + 1; i < i1; ++i)
       u[i] = u0 + (s1 > s0 ? (dualArc[i] - s0) / (s1 - s0) : 0.0) * (u1 - u0);
   }
-  // No node inside a bridge: such nodes move to the bridge's nearer end.
-  for (std::size_t i = 0; i < m; ++i) {
-    const double v = std::fmod(u[i] + base, length);
-    const std::size_t segment = target.segmentAt(loop, v);
-    if (target.segmentCurve[segment] != kNoCurve) continue;
-    const double from = loop.vertexParam(segment), to = loop.vertexParam(segment + 1);
-    u[i] += (v - from < to - v ? from - v : to - v);
-  }
-  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
-  // Arc lengths relative to `base` and back; whether one lies on a junction stretch.
+  // Arc lengths relative to `base` and back; whether one lies on a junction stretch or a bridge.
   auto relative = [&](double v) {
     const double c = std::fmod(v - base, length);
     return c < 0.0 ? c + length : c;
   };
-  auto onJunction = [&](double c) {
+  auto absolute = [&](double c) {
     double v = std::fmod(c + base, length);
-    if (v < 0.0) v += length;
-    return stretches.contains(target, loop, v);
+    return v < 0.0 ? v + length : v;
   };
-  // Outer nodes: one per dual vertex; corners replace the nearest one where the order allows.
-  std::vector<OuterNode> outer(m);
-  for (std::size_t i = 0; i < m; ++i) outer[i] = {u[i], i, false};
-  std::vector<OuterNode> extra;
-  for (double cornerParam : cornerParams) {
+  auto onJunction = [&](double c) { return stretches.contains(target, loop, absolute(c)); };
+  auto onBridge = [&](double c) {
+    return target.segmentCurve[target.segmentAt(loop, absolute(c))] == kNoCurve;
+  };
+
+  // The nodes the loop prescribes: corners (bridge ends included) and junction nodes.
+  std::vector<OuterNode> anchors;
+  for (const double cornerParam : target.cornerParams) {
     const double c = relative(cornerParam);
-    if (onJunction(c)) continue;  // the junction's own nodes are the nodes there
-    const std::size_t next = std::size_t(std::upper_bound(u.begin(), u.end(), c) - u.begin());
-    const std::size_t previous = next == 0 ? m - 1 : next - 1;
-    const double dPrevious = next == 0 ? c + length - u[m - 1] : c - u[previous];
-    const double dNext = next == m ? u[0] + length - c : u[next] - c;
-    const std::size_t nearest = dPrevious <= dNext ? previous : next % m;
-    const double lower = nearest == 0 ? u[m - 1] - length : u[nearest - 1];
-    const double upper = nearest + 1 == m ? length : u[nearest + 1];
-    double cc = c;
-    if (nearest == 0 && c > length / 2) cc = c - length;
-    if (!outer[nearest].corner && cc > lower && cc < upper) {
-      outer[nearest].param = cc;
-      outer[nearest].corner = true;
-    } else if (!(outer[nearest].corner && std::abs(outer[nearest].param - cc) < 1e-12 * length)) {
-      extra.push_back({c, std::numeric_limits<std::size_t>::max(), true});
-    }
+    if (!onJunction(c)) anchors.push_back({c, OuterNode::Kind::Corner, kNone});
   }
-  // On junction stretches the nodes the junction curves prescribe replace the dual vertices' own:
-  // each pairs with the closest dual vertex whose node it replaces, if any.
+  for (std::size_t k = 0; k < stretches.nodes.size(); ++k)
+    anchors.push_back({relative(stretches.nodes[k].param), OuterNode::Kind::Junction, k});
+  auto byParam = [](const OuterNode& x, const OuterNode& y) { return x.param < y.param; };
+  std::stable_sort(anchors.begin(), anchors.end(), byParam);
+  anchors.erase(std::unique(anchors.begin(), anchors.end(),
+                            [&](const OuterNode& x, const OuterNode& y) {
+                              return y.param - x.param <= 1e-12 * length;
+                            }),
+                anchors.end());
+  if (anchors.empty()) anchors.push_back({0.0, OuterNode::Kind::Plain, kNone});
+  // Between consecutive nodes: their arc lengths, and whether nodes may go between them (not
+  // along a junction, whose nodes are prescribed, nor inside a bridge).
+  auto gapEnd = [&](const std::vector<OuterNode>& nodes, std::size_t j) {
+    return j + 1 < nodes.size() ? nodes[j + 1].param : nodes[0].param + length;
+  };
+  auto splittable = [&](const std::vector<OuterNode>& nodes, std::size_t j) {
+    const double middle = 0.5 * (nodes[j].param + gapEnd(nodes, j));
+    const bool junction = nodes[j].kind == OuterNode::Kind::Junction &&
+                          nodes[(j + 1) % nodes.size()].kind == OuterNode::Kind::Junction &&
+                          onJunction(middle);
+    return !junction && !onBridge(middle);
+  };
+  auto wrap = [&](double c) { return c >= length ? c - length : c; };
+  // Evenly spaced nodes between the anchors, about `spacing` apart.
   std::vector<OuterNode> nodes;
-  std::vector<std::size_t> replaced;
-  for (const OuterNode& node : outer) {
-    if (!node.corner && onJunction(node.param)) {
-      replaced.push_back(node.fromDual);
-    } else {
-      nodes.push_back(node);
-    }
+  for (std::size_t j = 0; j < anchors.size(); ++j) {
+    nodes.push_back(anchors[j]);
+    if (!splittable(anchors, j)) continue;
+    const double c0 = anchors[j].param, c1 = gapEnd(anchors, j);
+    const long pieces = std::max(1L, std::lround((c1 - c0) / spacing));
+    for (long q = 1; q < pieces; ++q)
+      nodes.push_back(
+          {wrap(c0 + (c1 - c0) * double(q) / double(pieces)), OuterNode::Kind::Plain, kNone});
   }
-  if (stretches.any) {
-    std::vector<OuterNode> fixed;
-    for (std::size_t k = 0; k < stretches.nodes.size(); ++k)
-      fixed.push_back({relative(stretches.nodes[k].param), kNone, false, k});
-    std::sort(fixed.begin(), fixed.end(),
-              [](const OuterNode& x, const OuterNode& y) { return x.param < y.param; });
-    std::vector<double> gap(fixed.size(), std::numeric_limits<double>::infinity());
-    for (const std::size_t i : replaced) {
-      const double v = outer[i].param;
-      auto it = std::lower_bound(fixed.begin(), fixed.end(), v,
-                                 [](const OuterNode& x, double p) { return x.param < p; });
-      if (it == fixed.end() || (it != fixed.begin() && v - (it - 1)->param < it->param - v)) --it;
-      const std::size_t j = std::size_t(it - fixed.begin());
-      if (std::abs(it->param - v) < gap[j]) gap[j] = std::abs(it->param - v), fixed[j].fromDual = i;
-    }
-    nodes.insert(nodes.end(), fixed.begin(), fixed.end());
-  }
-  for (const OuterNode& e : extra) nodes.push_back(e);
-  std::stable_sort(nodes.begin(), nodes.end(),
-                   [](const OuterNode& x, const OuterNode& y) { return x.param < y.param; });
+  std::stable_sort(nodes.begin(), nodes.end(), byParam);
   // Where a chord between consecutive nodes misses a vertex of the loop by more than the
   // tolerance (a narrow tab the dual mesh could not enter), that vertex becomes a node too.
   {
     std::vector<double> far;
-    for (std::size_t j = 0; j < nodes.size(); ++j) {
-      const double s0 = nodes[j].param + base;
-      const double s1 =
-          (j + 1 < nodes.size() ? nodes[j + 1].param : nodes[0].param + length) + base;
-      addFarVertices(loop, s0, s1, tolerance, far);
-    }
-    for (double v : far) {
+    for (std::size_t j = 0; j < nodes.size(); ++j)
+      addFarVertices(loop, nodes[j].param + base, gapEnd(nodes, j) + base, tolerance, far);
+    for (const double v : far) {
       const double c = relative(v);
-      if (!onJunction(c)) nodes.push_back({c, kNone, false});
+      if (!onJunction(c)) nodes.push_back({c, OuterNode::Kind::Plain, kNone});
     }
-    std::stable_sort(nodes.begin(), nodes.end(),
-                     [](const OuterNode& x, const OuterNode& y) { return x.param < y.param; });
+    std::stable_sort(nodes.begin(), nodes.end(), byParam);
   }
-  // The zip starts at the first node paired with a dual vertex, and the dual loop at that vertex.
-  const auto first = std::find_if(nodes.begin(), nodes.end(),
-                                  [&](const OuterNode& node) { return node.fromDual != kNone; });
-  if (first == nodes.end())
-    throw std::runtime_error("extraction: no node of the boundary strip at " +
-                             describePoint(loop.point(0)) + " pairs with the dual mesh");
-  const std::size_t shift = first->fromDual;
-  std::rotate(nodes.begin(), first, nodes.end());
-  for (OuterNode& node : nodes)
-    if (node.fromDual != kNone) node.fromDual = (node.fromDual + m - shift) % m;
-  std::rotate(a.begin(), a.begin() + std::ptrdiff_t(shift), a.end());
+  // At least four nodes, and as many as make the strip's two sides even in all (a strip of quads
+  // only needs an even number of edges around it): split the longest gaps.
+  auto splitLongest = [&] {
+    std::size_t best = kNone;
+    double widest = 0.0;
+    for (std::size_t j = 0; j < nodes.size(); ++j) {
+      const double gap = gapEnd(nodes, j) - nodes[j].param;
+      if (gap > widest && splittable(nodes, j)) widest = gap, best = j;
+    }
+    if (best == kNone) return false;
+    nodes.push_back({wrap(nodes[best].param + 0.5 * widest), OuterNode::Kind::Plain, kNone});
+    std::stable_sort(nodes.begin(), nodes.end(), byParam);
+    return true;
+  };
+  while (nodes.size() < 4 && splitLongest()) {
+  }
+  if ((m + nodes.size()) % 2 == 1) splitLongest();
+
+  // The outer row starts at the node nearest to the first dual vertex's closest point.
+  std::size_t first = 0;
+  for (std::size_t j = 1; j < nodes.size(); ++j)
+    if (std::min(nodes[j].param, length - nodes[j].param) <
+        std::min(nodes[first].param, length - nodes[first].param))
+      first = j;
+  std::rotate(nodes.begin(), nodes.begin() + std::ptrdiff_t(first), nodes.end());
 
   const std::size_t n = nodes.size();
   std::vector<std::uint32_t> b(n);
   for (std::size_t j = 0; j < n; ++j) {
     Vec3d p = loop.pointAt(nodes[j].param + base);
-    double v = std::fmod(nodes[j].param + base, length);
-    if (v < 0.0) v += length;
+    const double v = absolute(nodes[j].param);
     std::size_t segment = target.segmentAt(loop, v);
-    if (nodes[j].junctionNode != kNone) {  // exact, as on every other side of the junction
+    if (nodes[j].kind == OuterNode::Kind::Junction) {  // exact, as on every other side
       const std::array<double, 3>& point = stretches.nodes[nodes[j].junctionNode].point;
       b[j] = static_cast<std::uint32_t>(mesh.points.size());
       mesh.points.push_back(point);
@@ -447,30 +441,37 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
     const std::uint32_t curve = target.segmentCurve[segment];
     b[j] = static_cast<std::uint32_t>(mesh.points.size());
     mesh.points.push_back({p[0], p[1], p[2]});
-    mesh.constraints.push_back(nodes[j].corner ? PointConstraint{PointRole::Corner, curve}
-                                               : PointConstraint{PointRole::Boundary, curve});
+    mesh.constraints.push_back(nodes[j].kind == OuterNode::Kind::Corner
+                                   ? PointConstraint{PointRole::Corner, curve}
+                                   : PointConstraint{PointRole::Boundary, curve});
   }
-  // Zip: both sides advance together where the next outer node pairs with the next dual vertex.
-  std::size_t i = 0, j = 0;
-  while (i < m || j < n) {
-    const std::size_t nextI = (i + 1) % m, nextJ = (j + 1) % n;
-    const bool dualLeft = i < m, outerLeft = j < n;
-    const bool paired = dualLeft && outerLeft && nodes[nextJ].fromDual == nextI;
-    if (paired) {
-      mesh.faces.push_back({a[nextI], a[i % m], b[j % n], b[nextJ]});
-      ++stats.quads;
-      ++i;
-      ++j;
-    } else if (outerLeft &&
-               (nodes[nextJ].fromDual == std::numeric_limits<std::size_t>::max() || !dualLeft)) {
-      mesh.faces.push_back({a[i % m], b[j % n], b[nextJ], kNoCorner});
-      ++stats.triangles;
-      ++j;
-    } else {
-      mesh.faces.push_back({a[nextI], a[i % m], b[j % n], kNoCorner});
-      ++stats.triangles;
-      ++i;
+
+  // The faces: the cheapest zip of the two rows, searched around where each dual vertex lies.
+  std::vector<Vec3d> inner(m), innerNormals(m), outer(n);
+  for (std::size_t i = 0; i < m; ++i)
+    inner[i] = toVec(mesh.points[a[i]]), innerNormals[i] = normals[a[i]];
+  for (std::size_t j = 0; j < n; ++j) outer[j] = toVec(mesh.points[b[j]]);
+  const double offset = nodes[0].param > length / 2 ? nodes[0].param - length : nodes[0].param;
+  std::vector<double> along(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    along[j] = nodes[j].param - offset;  // in [0, length): node 0 at 0, the rest ascending
+    if (along[j] < 0.0) along[j] += length;
+    if (along[j] >= length || j == 0) along[j] = j == 0 ? 0.0 : along[j] - length;
+  }
+  std::vector<std::size_t> centre(m);
+  for (std::size_t i = 0; i < m; ++i)
+    centre[i] =
+        std::size_t(std::lower_bound(along.begin(), along.end(), u[i] - offset) - along.begin());
+  // The search keeps within a band of outer nodes around where each dual vertex lies.
+  const std::size_t band = 12 + n / 64;
+  for (const StripFace& face : zipStrip(inner, innerNormals, outer, centre, band)) {
+    std::array<CornerIndex, 4> corners{kNoCorner, kNoCorner, kNoCorner, kNoCorner};
+    for (int k = 0; k < face.corners; ++k) {
+      const std::uint32_t index = face.index[std::size_t(k)];
+      corners[std::size_t(k)] = face.outer[std::size_t(k)] ? b[index] : a[index];
     }
+    mesh.faces.push_back(corners);
+    ++(face.corners == 4 ? stats.quads : stats.triangles);
   }
 }
 
@@ -478,7 +479,9 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
 
 StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& loopCurves,
                                 const std::vector<std::array<double, 3>>& corners,
-                                const JunctionNodes& junctions, double tolerance, double reach) {
+                                const JunctionNodes& junctions, double spacing, double tolerance,
+                                double reach) {
+  if (!(spacing > 0.0)) throw std::invalid_argument("rebuildBoundaryStrip: spacing must be > 0");
   StripStats stats;
   if (mesh.constraints.size() != mesh.points.size()) mesh.constraints.resize(mesh.points.size());
   std::vector<PolylineParam> loops;
@@ -557,10 +560,20 @@ StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>
   stats.removedFaces = before - mesh.faces.size();
   mesh.faces.insert(mesh.faces.end(), patches.begin(), patches.end());
 
+  // Surface normals of the dual vertices (summed face normals), which orient the strip's faces.
+  std::vector<Vec3d> normals(mesh.points.size(), Vec3d(0.0));
+  for (const auto& face : mesh.faces) {
+    const int n = cornerCount(face);
+    const Vec3d p0 = toVec(mesh.points[face[0]]), p1 = toVec(mesh.points[face[1]]),
+                p2 = toVec(mesh.points[face[2]]);
+    const Vec3d normal =
+        n == 3 ? (p1 - p0).cross(p2 - p0) : (p2 - p0).cross(toVec(mesh.points[face[3]]) - p1);
+    for (int c = 0; c < n; ++c) normals[face[std::size_t(c)]] += normal;
+  }
   for (std::size_t d = 0; d < dualLoops.size(); ++d) {
     if (loopsOfDual[d].empty()) continue;
-    buildStrip(mesh, dualLoops[d], joinLoops(mesh, loopsOfDual[d], corners), junctions, tolerance,
-               stats);
+    buildStrip(mesh, dualLoops[d], normals, joinLoops(mesh, loopsOfDual[d], corners), junctions,
+               spacing, tolerance, stats);
   }
   return stats;
 }

@@ -27,20 +27,20 @@ struct StripStats {
 /// closest to; each original loop takes the matched dual loop with the most vertices. Dual
 /// pieces (connected components) with a boundary none of whose loops was taken are stray
 /// (surface left inside a small hole) and removed. Between a taken dual loop D and its loop O the
-/// strip gets one node on O per vertex of D, at the arc length of the vertex's closest point on O
-/// (made monotone: vertices outside the longest increasing run of arc lengths are spaced by D's
-/// own arc length), the corners of O replacing the nearest such node where the order allows, else
-/// added with a triangle; then one quad per vertex step of D. New nodes on O get role Boundary
-/// (curve: the loop's index in mesh.curves) or Corner.
+/// strip gets nodes on O: its corners, and between consecutive corners nodes evenly spaced about
+/// `spacing` apart (at least four on a loop, and one more where the count around the strip would
+/// be odd); then the faces between D and those nodes are the cheapest sequence of quads (across
+/// the strip, or fanning two edges of one side to a point of the other) and, only where no quad
+/// fits, triangles (strip_zip.h). New nodes on O get role Boundary (curve: the loop's index in
+/// mesh.curves) or Corner.
 /// @param mesh        the dual mesh: edge-manifold, faces oriented (boundary loops run with the
 ///                    mesh on their left, as the original loops do)
 /// @param loopCurves  the indices into mesh.curves of the original boundary loops (closed)
 /// @param corners     feature points; those equal to a vertex of a loop are its corners
 /// @param junctions   the nodes of the junction curves: on loop edges that are junction edges
-///                    these replace the nodes of the dual vertices (each pairing with the closest
-///                    dual vertex whose node it replaces; triangles where counts differ), take
-///                    the exact prescribed coordinates and get role Junction; no corner or extra
-///                    node is added there
+///                    these are the strip's nodes there, with the exact prescribed coordinates, and
+///                    get role Junction; no corner or extra node is added there
+/// @param spacing     the distance between nodes on the loops (the voxel size), > 0
 /// @param tolerance   where the chord between two strip nodes misses a vertex of the loop by
 ///                    more than this, the vertex becomes a node too (with a triangle)
 /// @param reach       a dual vertex votes only for original loops closer than this (the dual mesh
@@ -53,6 +53,7 @@ struct StripStats {
 /// no dual loop to join.
 StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& loopCurves,
                                 const std::vector<std::array<double, 3>>& corners,
-                                const JunctionNodes& junctions, double tolerance, double reach);
+                                const JunctionNodes& junctions, double spacing, double tolerance,
+                                double reach);
 
 }  // namespace voxremesh::extract

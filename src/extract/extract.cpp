@@ -108,7 +108,7 @@ QuadMesh extractQuadMesh(const Volume& volume, const ExtractSettings& settings,
     const double voxel = volume.info().voxelSize;
     const extract::JunctionNodes junctions(volume.junctionCurves(), voxel, 0.2 * voxel);
     const extract::StripStats strip =
-        extract::rebuildBoundaryStrip(mesh, loopCurves, volume.featurePoints(), junctions,
+        extract::rebuildBoundaryStrip(mesh, loopCurves, volume.featurePoints(), junctions, voxel,
                                       0.2 * voxel, kStripReachVoxels * voxel);
     counts.stripQuads = strip.quads;
     counts.stripTriangles = strip.triangles;
