@@ -102,6 +102,11 @@ TEST(RemeshCli, QualityVtuAndSummaryPerPart) {
   EXPECT_NE(bad.exitCode, 0);
   EXPECT_TRUE(contains(bad.output, "--vtu needs a .vtu file")) << bad.output;
   EXPECT_FALSE(fs::exists(dir / "bad.k"));
+  // Without the optimisation the bare extraction fails more elements.
+  const auto bare = runCli("remesh " + quoted(sample) + " -o " + quoted(dir / "bare.k") +
+                           " --no-optimize --quiet");
+  ASSERT_EQ(bare.exitCode, 0) << bare.output;
+  EXPECT_GT(numberAfter(bare.output, "elements, "), failing) << bare.output;
 }
 
 TEST(RemeshCli, VtkReadsTheQualityFiles) {

@@ -20,11 +20,14 @@ namespace {
 
 const char* const kUsage =
     "voxremesh remesh IN -o OUT [--size H] [--parts P1,P2,...] [--feature-angle DEG]\n"
-    "       [--threads N] [--report REPORT.json] [--vtu QUALITY.vtu] [--quiet]";
+    "       [--threads N] [--report REPORT.json] [--vtu QUALITY.vtu] [--no-optimize] [--quiet]";
 
 const char* const kHelp =
     "Remeshes every shell part of IN (or those of --parts) through a narrow-band volume: sheets,\n"
-    "signed distance, dual quads with the boundary strip and feature snapping; parts in parallel.\n"
+    "signed distance (one volume per sheet), dual quads with the boundary strip and feature\n"
+    "snapping, sheets joined again at their junctions, then quad optimisation (clean-up, rhombic\n"
+    "collapse, relaxation on the original surface, triangle merging, warping removal); parts in\n"
+    "parallel.\n"
     "Every other part, element and keyword is written back untouched; new node and element IDs\n"
     "lie above all IDs of IN; keywords naming nodes of a remeshed part are remapped to the\n"
     "nearest new node (listed in --report; what cannot be remapped is printed as a warning and\n"
@@ -43,6 +46,7 @@ const char* const kHelp =
     "  --vtu QUALITY.vtu      the remeshed elements with every quality metric, a failure bit\n"
     "                         mask and a pass flag as cell data, and each node's distance to\n"
     "                         the original as point data (as voxremesh quality --vtu)\n"
+    "  --no-optimize          write the extracted quads without the optimisation\n"
     "  --quiet                no progress line (it shows on a terminal only anyway)\n";
 
 std::vector<Id> parseParts(const std::string& text) {
@@ -116,6 +120,7 @@ int runRemesh(const std::vector<std::string>& args) {
                                        {"--threads", true},
                                        {"--report", true},
                                        {"--vtu", true},
+                                       {"--no-optimize", false},
                                        {"--quiet", false}},
                                       1, 1, kUsage);
   const auto output = parsed.value("-o");
@@ -124,6 +129,7 @@ int runRemesh(const std::vector<std::string>& args) {
   if (const auto size = parsed.value("--size")) settings.targetSize = parseNumber("--size", *size);
   if (settings.targetSize < 0) throw SettingError("--size must be positive");
   if (const auto parts = parsed.value("--parts")) settings.parts = parseParts(*parts);
+  settings.optimize = !parsed.has("--no-optimize");
   if (const auto angle = parsed.value("--feature-angle"))
     settings.sheets.featureAngleDeg = parseNumber("--feature-angle", *angle);
   if (const auto threads = parsed.value("--threads")) {
