@@ -388,6 +388,35 @@ QuadMesh cylinder(int n, double jitter, unsigned seed) {
   return mesh;
 }
 
+TEST(ImproveFailingElements, MovesPlantedPointsBackUntilNothingFails) {
+  // A flat 6 x 6 grid with one interior point and one boundary point dragged off: their quads
+  // fail the angle and Jacobian criteria; the step moves them until none fails, the interior
+  // point stays on the plane, the boundary point on its edge, the corners where they were.
+  const int n = 6;
+  QuadMesh mesh = grid(n);
+  const ReferenceSurface plane(grid(n));
+  mesh.points[2 * (n + 1) + 2] = {2.8, 2.7, 0.0};  // interior
+  mesh.points[3] = {3.6, 0.0, 0.0};                // on the edge y = 0
+  voxremesh::QualitySettings settings;
+  settings.targetSize = 1.0;
+  auto failing = [&] {
+    std::size_t count = 0;
+    const auto qualities = voxremesh::elementQualities(mesh);
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+      count += voxremesh::elementFailures(qualities[f], 4, settings) != 0 ? 1 : 0;
+    return count;
+  };
+  ASSERT_GT(failing(), 0u);
+  EXPECT_GT(voxremesh::improveFailingElements(mesh, plane, settings, 10), 0u);
+  EXPECT_EQ(failing(), 0u);
+  for (const auto& p : mesh.points) EXPECT_EQ(p[2], 0.0);
+  EXPECT_EQ(mesh.points[3][1], 0.0);
+  EXPECT_EQ(mesh.points[0], (std::array<double, 3>{0.0, 0.0, 0.0}));
+  EXPECT_EQ(mesh.points[n], (std::array<double, 3>{double(n), 0.0, 0.0}));
+  settings.targetSize = 0.0;
+  EXPECT_THROW(voxremesh::improveFailingElements(mesh, plane, settings), std::invalid_argument);
+}
+
 TEST(RelaxMesh, EqualisesAJitteredCylinderAndStaysOnIt) {
   const int n = 10;
   QuadMesh mesh = cylinder(n, 0.35, 3);
@@ -592,8 +621,8 @@ TEST(OptimizeQuadMesh, BracketImprovesKeepsItsHolesAndIsThreadIndependent) {
   EXPECT_EQ(
       std::memcmp(one.points.data(), two.points.data(), one.points.size() * sizeof(one.points[0])),
       0);
-  // Where the optimisation stands on the bracket (bench_optimize prints the details): 11.8 % of
-  // the elements fail a default criterion with the Jacobian ratio at the corners (6.5 % at the
+  // Where the optimisation stands on the bracket (bench_optimize prints the details): 8.0 % of
+  // the elements fail a default criterion with the Jacobian ratio at the corners (5.5 % at the
   // Gauss points; the input deck itself fails 25 % and 8.2 %; the extraction 28 %; issue 5's goal
   // is 1 %: most failures are next to small holes and the boundary), triangles under 3 %, every
   // hole and the outer contour kept.
@@ -602,7 +631,7 @@ TEST(OptimizeQuadMesh, BracketImprovesKeepsItsHolesAndIsThreadIndependent) {
   const auto before = voxremesh::assessQuality(extracted, quality, &input);
   const auto after = voxremesh::assessQuality(one, quality, &input);
   EXPECT_LT(after.failingAnyShare, 0.45 * before.failingAnyShare);
-  EXPECT_LT(after.failingAnyShare, 0.125);
+  EXPECT_LT(after.failingAnyShare, 0.09);
   EXPECT_LT(after.triangleShare, 0.03);
   EXPECT_LT(after.criteria[static_cast<int>(voxremesh::Criterion::Warping)].share, 0.025);
   EXPECT_LT(after.distance->meanToOriginal, 0.1 * 4.5);

@@ -201,6 +201,8 @@ int run(int argc, char** argv) {
   std::printf("    relaxation        %8.4f s\n", best.relaxSeconds);
   std::printf("    triangle merging  %8.4f s  (%zu pairs)\n", best.mergeSeconds,
               best.trianglesMerged);
+  std::printf("    failing elements  %8.4f s  (%zu moves)\n", best.improveSeconds,
+              best.improvedMoves);
   std::printf("    warping removal   %8.4f s  (%d iterations, %zu -> %zu warped)\n",
               best.warpingSeconds, best.warping.iterations, best.warping.warpedBefore,
               best.warping.warpedAfter);

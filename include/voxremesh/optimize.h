@@ -126,6 +126,20 @@ CleanupResult cleanUpMesh(QuadMesh& mesh, const CleanupSettings& settings);
 /// Throws std::invalid_argument for targetSize <= 0 or a bad mesh; SettingError for bad settings.
 std::size_t mergeTrianglePairs(QuadMesh& mesh, const QualitySettings& settings);
 
+/// Moves the points of failing elements one at a time (in index order, so the result does not
+/// depend on the thread count) to the best of a few candidate positions: the centroid of the
+/// point's edge neighbours, the mean of the positions that make each of its quads a
+/// parallelogram, and the half-way steps to both; Free points projected on `original`, curve
+/// points kept on their curves, Corners and Junction points fixed. A move is taken only when the
+/// faces around the point then fail fewer criteria (quality.h, under `settings`), or as many with
+/// a larger smallest Jacobian ratio or scaled Jacobian. Repeats up to `sweeps` times or until no
+/// point moves.
+/// @return the number of moves made
+/// Throws std::invalid_argument for an empty surface, negative sweeps, settings.targetSize <= 0
+/// or a bad mesh; SettingError for bad settings.
+std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& original,
+                                   const QualitySettings& settings, int sweeps = 5);
+
 /// Settings of optimizeQuadMesh.
 struct OptimizeSettings {
   /// Quality limits: targetSize (0: the median edge length of the input mesh) scales the
@@ -141,6 +155,8 @@ struct OptimizeSettings {
   double relaxDamping = 0.5;
   bool collapseRhombic = true;
   bool mergeTriangles = true;
+  /// Sweeps of improveFailingElements after the relaxation (0: none).
+  int improveSweeps = 5;
   /// A face is of zero area below zeroAreaFactor x targetSize^2.
   double zeroAreaFactor = 1e-4;
   /// Edges shorter than shortEdgeFactor x targetSize are collapsed in the clean-up. Off by default:
@@ -163,16 +179,19 @@ struct OptimizeStats {
   double rhombicSeconds = 0.0;
   double relaxSeconds = 0.0;
   double mergeSeconds = 0.0;
+  double improveSeconds = 0.0;
   double warpingSeconds = 0.0;
   double totalSeconds = 0.0;
   CleanupResult cleanup;  ///< summed over both clean-up passes
   std::size_t rhombicCollapsed = 0;
   std::size_t trianglesMerged = 0;  ///< quads made from triangle pairs
+  std::size_t improvedMoves = 0;    ///< points moved by improveFailingElements
   WarpingResult warping;
 };
 
 /// Runs the steps: clean-up, rhombic collapse, clean-up, relaxation, triangle merging,
-/// relaxation, warping removal (last, so that no later step warps quads again).
+/// relaxation, improvement of the failing elements, warping removal (last, so that no later step
+/// warps quads again).
 /// @param mesh      the extracted mesh (preconditions at the top of the file)
 /// @param original  the original surface (built from the input shells), not empty
 /// @param settings  see OptimizeSettings

@@ -22,7 +22,7 @@ void checkOptimizeSettings(const OptimizeSettings& s) {
   if (!std::isfinite(s.warpingDeg) || s.warpingDeg < 0.0 || s.warpingDeg > 180.0)
     throw SettingError("optimize: warpingDeg " + std::to_string(s.warpingDeg) +
                        " is outside 0 .. 180");
-  if (s.warpingIterations < 0 || s.relaxIterations < 0)
+  if (s.warpingIterations < 0 || s.relaxIterations < 0 || s.improveSweeps < 0)
     throw SettingError("optimize: iteration counts must be >= 0");
   if (!(s.relaxDamping > 0.0 && s.relaxDamping <= 0.7))
     throw SettingError("optimize: relaxDamping " + std::to_string(s.relaxDamping) +
@@ -82,6 +82,11 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
     s.trianglesMerged = mergeTrianglePairs(mesh, quality);
     s.mergeSeconds = secondsSince(t);
     relax();
+  }
+  if (settings.improveSweeps > 0 && quality.targetSize > 0.0) {
+    const Clock::time_point t = Clock::now();
+    s.improvedMoves = improveFailingElements(mesh, original, quality, settings.improveSweeps);
+    s.improveSeconds = secondsSince(t);
   }
   const Clock::time_point t = Clock::now();
   s.warping = removeWarping(mesh, settings.warpingDeg, settings.warpingIterations,
