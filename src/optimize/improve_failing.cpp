@@ -61,14 +61,17 @@ std::vector<Vec3> candidates(const QuadMesh& mesh, const opt::Topology& t, Corne
     centroid = centroid + mesh.points[*w];
   centroid = centroid * (1.0 / double(std::max<std::size_t>(1, t.degree(v))));
   Vec3 parallelogram{0.0, 0.0, 0.0};
+  std::vector<Vec3> single;
   int quads = 0;
   for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f) {
     const auto& face = mesh.faces[*f];
     if (cornerCount(face) != 4) continue;
     std::size_t k = 0;
     while (face[k] != v) ++k;
-    parallelogram = parallelogram + mesh.points[face[(k + 1) % 4]] +
-                    mesh.points[face[(k + 3) % 4]] - mesh.points[face[(k + 2) % 4]];
+    const Vec3 own = mesh.points[face[(k + 1) % 4]] + mesh.points[face[(k + 3) % 4]] -
+                     mesh.points[face[(k + 2) % 4]];
+    parallelogram = parallelogram + own;
+    single.push_back((p + own) * 0.5);
     ++quads;
   }
   std::vector<Vec3> result{centroid, (p + centroid) * 0.5};
@@ -77,6 +80,7 @@ std::vector<Vec3> candidates(const QuadMesh& mesh, const opt::Topology& t, Corne
     result.push_back(parallelogram);
     result.push_back((p + parallelogram) * 0.5);
   }
+  result.insert(result.end(), single.begin(), single.end());
   return result;
 }
 
