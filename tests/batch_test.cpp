@@ -11,6 +11,7 @@
 #include "voxremesh/batch.h"
 #include "voxremesh/errors.h"
 #include "voxremesh/io.h"
+#include "voxremesh/volume.h"
 
 namespace fs = std::filesystem;
 using namespace voxremesh;
@@ -241,4 +242,17 @@ TEST(BatchCli, OneBrokenJobThenResume) {
   const auto usage = runCli("batch " + quoted(dir / "jobs.json") + " --shard 3");
   EXPECT_EQ(usage.exitCode, 1);
   EXPECT_TRUE(contains(usage.output, "--shard expects I/N")) << usage.output;
+}
+
+TEST(Batch, VoxelizeJobWritesOneVolumePerSheet) {
+  VOXREMESH_REQUIRE_SHARED_DECK(wheel, "wheel.k");
+  const fs::path dir = scratchDir("batch_sheets");
+  writeText(dir / "jobs.json", "{\"jobs\": [{\"task\": \"voxelize\", \"input\": \"" +
+                                   wheel.string() + "\", \"output\": \"out/wheel.vdb\"}]}\n");
+  const std::vector<BatchResult> results = runBatch(readBatchFile(dir / "jobs.json").jobs, {});
+  ASSERT_EQ(results.at(0).status, "ok") << results[0].message;
+  EXPECT_EQ(results[0].message, "part 1, 3 sheets");
+  const std::vector<Volume> volumes = readVolumes(dir / "out" / "wheel.vdb");
+  ASSERT_EQ(volumes.size(), 3u);  // rim front, rim back, disc
+  for (const Volume& volume : volumes) EXPECT_EQ(volume.junctionCurves().size(), 1u);
 }

@@ -22,6 +22,8 @@ using voxremesh::test::runCli;
 using voxremesh::test::samplePart;
 using voxremesh::test::scratchDir;
 
+using voxremesh::test::runShell;
+
 namespace {
 
 /// The text of a keyword block: from "\n*KEYWORD\n" to the next keyword line.
@@ -46,19 +48,6 @@ std::vector<std::string> vtuArray(const std::string& vtu, const std::string& nam
 std::size_t numberAfter(const std::string& text, const std::string& before) {
   const std::size_t at = text.find(before);
   return at == std::string::npos ? 0 : std::stoul(text.substr(at + before.size()));
-}
-
-/// Output of a shell command (stdout and stderr) and its exit code.
-voxremesh::test::CliResult runShell(const std::string& command) {
-  voxremesh::test::CliResult result;
-  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return result;
-  char buffer[4096];
-  std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) result.output.append(buffer, n);
-  const int status = ::pclose(pipe);
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
 }
 
 const char* const kCellArrays[] = {"warping_deg",          "aspect_ratio",    "min_angle_deg",

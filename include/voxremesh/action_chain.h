@@ -17,6 +17,10 @@
 //   that contains -help only prints help.
 // Stack
 // - read pushes a deck (any deck or mesh format) or a volume (.vdb).
+// - A volume item holds one volume per sheet of its part (volume.h buildSheetVolumes): voxelize
+//   makes them, write stores them all in one .vdb (writeVolumes), extract extracts each and joins
+//   them at their junction nodes (pipeline.h extractPartMesh), print reports each, slice draws
+//   one (sheet=).
 // - Actions that need an item use the topmost item of the kind they need (voxelize: a deck;
 //   slice: a volume; extract: a volume; optimize: a quad mesh; quality: a quad mesh or deck;
 //   write and print: the top item) and push what they make on top.
@@ -126,7 +130,9 @@ struct ChainItem {
   std::string name;  ///< where it came from ("part.k", "voxelize part 4075")
   FeModel deck;
   QuadMesh mesh;
-  Volume volume;
+  /// Volumes: one per sheet of the part (buildSheetVolumes, readVolumes), sheet order; a .vdb
+  /// file of one volume gives one.
+  std::vector<Volume> volumes;
   /// Volumes made by voxelize and the meshes made from them: the shells of the part they were
   /// made from (the original surface); empty when unknown (a volume read from a .vdb file).
   QuadMesh original;

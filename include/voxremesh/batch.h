@@ -11,7 +11,8 @@
 //   JOB = {
 //     "name": "bracket",                     optional; default: the input file's stem, plus
 //                                            "-" and the variant number for variants
-//     "task": "voxelize",                    required: "voxelize" (a part into a .vdb volume),
+//     "task": "voxelize",                    required: "voxelize" (a part into a .vdb file,
+//                                            one volume per sheet as `voxremesh voxelize`),
 //                                            "convert" (deck to deck by extension), "remesh"
 //                                            (the deck's parts remeshed, pipeline.h) or "chain"
 //     "input": "decks/bracket.k",            the input file, or

@@ -90,14 +90,34 @@ struct SheetVolume {
 };
 
 /// The first two stages for one planned part: its sheets, each written into a volume of its own
-/// whose voxel size is the plan's target size. (Sheets that meet along a junction curve, like the
-/// disc and the rim of a wheel at their T-junction, have no common inside and outside, so one
-/// signed distance cannot hold them together; extraction then puts the same nodes on the
-/// junction curve on every side.)
-/// Throws as buildSheets and buildVolume; std::runtime_error when no shell of the part has an
-/// area.
+/// whose voxel size is the plan's target size (buildSheetVolumes). (Sheets that meet along a
+/// junction curve, like the disc and the rim of a wheel at their T-junction, have no common inside
+/// and outside, so one signed distance cannot hold them together; extraction then puts the same
+/// nodes on the junction curve on every side.) Throws as buildSheets and buildVolume;
+/// std::runtime_error when no shell of the part has an area.
 std::vector<SheetVolume> partVolumes(const FeModel& model, const PartPlan& plan,
                                      const RemeshSettings& settings);
+
+/// Adds the counts of `add` (one sheet's extraction) to `sum` (the part's).
+void addExtractStats(ExtractStats& sum, const ExtractStats& add);
+
+/// The quad mesh of a part from the volumes of its sheets (buildSheetVolumes, readVolumes):
+/// extractQuadMesh of each sheet volume, in order, joined at their junction nodes
+/// (joinAtJunctions), so that the T-junction between sheets is one conforming mesh.
+/// @param volumes   the part's sheet volumes, at least one, all non-empty
+/// @param settings  see ExtractSettings
+/// @param stats     when not null, receives the counts summed over the sheets
+/// @return the joined mesh, its part the first volume's
+/// Throws std::invalid_argument when `volumes` is empty or holds an empty volume;
+/// std::runtime_error as extractQuadMesh, the message prefixed with "sheet K: " when the part
+/// has several sheets.
+QuadMesh extractPartMesh(const std::vector<Volume>& volumes, const ExtractSettings& settings = {},
+                         ExtractStats* stats = nullptr);
+
+/// The MC33 triangles (extractTriangles) of each sheet volume of a part, concatenated in sheet
+/// order (no points merged). Throws std::invalid_argument when `volumes` is empty or holds an
+/// empty volume.
+QuadMesh extractPartTriangles(const std::vector<Volume>& volumes);
 
 /// What remeshDeck did to one part.
 struct RemeshedPart {

@@ -162,7 +162,7 @@ void checkVolumeSettings(const VolumeSettings& settings);
 /// Writes the sheets of one part into a volume: the signed distance grid, the invalid and
 /// feature masks, and the sheets' feature lines, feature points, boundary loops and junction
 /// curves. Sheets that meet along junction curves (a T-junction) have no consistent sign where
-/// they meet: give each of them a volume of its own (remeshDeck does).
+/// they meet: give each of them a volume of its own (buildSheetVolumes; remeshDeck does).
 /// Several sheets are united: per voxel the closest sheet wins (exact ties: the lower sheet
 /// index, then the lower face index). The result does not depend on the number of threads.
 /// Parameters: sheets - manifold, consistently oriented sheets of ONE part; settings - see
@@ -174,6 +174,25 @@ void checkVolumeSettings(const VolumeSettings& settings);
 Volume buildVolume(const std::vector<Sheet>& sheets, const VolumeSettings& settings,
                    const VolumeSource& source = {});
 
+/// Writes each sheet of one part into a volume of its own (buildVolume({sheet}, ...) per sheet, in
+/// order), all at ONE voxel size: chooseVoxelSize over all the sheets. The volumes of sheets that
+/// meet along junction curves then put the same nodes on those curves (extract.h, "Junctions"),
+/// and joinAtJunctions (quad_mesh.h) joins their meshes again.
+/// Parameters: sheets - the sheets of ONE part as buildSheets returns them (at least one);
+/// settings, source - as buildVolume.
+/// Throws std::invalid_argument when `sheets` is empty; otherwise as chooseVoxelSize and
+/// buildVolume (the estimated memory is checked per sheet).
+std::vector<Volume> buildSheetVolumes(const std::vector<Sheet>& sheets,
+                                      const VolumeSettings& settings,
+                                      const VolumeSource& source = {});
+
+/// The volume of sheet `sheet` among the sheet volumes of a part (the chain's and the CLI's
+/// sheet= / --sheet choice). @param what names the option in the message ("sheet=").
+/// Throws SettingError naming the option and the valid range when `sheet` is not in
+/// 0..volumes.size()-1.
+const Volume& sheetVolume(const std::vector<Volume>& volumes, long long sheet,
+                          const std::string& what);
+
 /// Writes the volume to a .vdb file with grids "sdf", "invalid" and "feature" and voxremesh
 /// metadata (voxel size, band, thresholds, source file, part ID, tool version, curves). The masks
 /// are stored as bool grids (marked voxels active, value true) because pyopenvdb and other
@@ -182,10 +201,28 @@ Volume buildVolume(const std::vector<Sheet>& sheets, const VolumeSettings& setti
 /// std::runtime_error naming the path when it cannot be written.
 void writeVolume(const Volume& volume, const std::filesystem::path& path);
 
-/// Reads a volume written by writeVolume. Throws InputError naming the file when it cannot be
-/// read as a .vdb file, lacks one of the grids sdf (float), invalid and feature (mask), or the
-/// grids do not share one uniform transform.
+/// Reads a volume written by writeVolume (or a writeVolumes file of one sheet). Throws InputError
+/// naming the file when it cannot be read as a .vdb file, lacks one of the grids sdf (float),
+/// invalid and feature (mask), the grids do not share one uniform transform, or the file holds
+/// the volumes of several sheets (the message says to read it with readVolumes).
 Volume readVolume(const std::filesystem::path& path);
+
+/// Writes the volumes of all sheets of one part (buildSheetVolumes) to one .vdb file.
+/// Layout: sheet 0 exactly as writeVolume writes a volume (grids "sdf", "invalid", "feature",
+/// the file metadata keys of volume_io.cpp), so that a file of one sheet is a writeVolume file;
+/// sheet k > 0 has the grids "sdf.sheetK", "invalid.sheetK", "feature.sheetK" and its file
+/// metadata under the same keys with the suffix ".sheetK" (e.g.
+/// "voxremesh_junction_curves.sheet2"). Every grid carries the int64 metadata "voxremesh_sheet"
+/// = k, and the file the int64 "voxremesh_sheet_count" (a file without it holds one sheet).
+/// The file appears complete or not at all.
+/// Throws std::invalid_argument when `volumes` is empty or holds an empty volume;
+/// std::runtime_error naming the path when it cannot be written.
+void writeVolumes(const std::vector<Volume>& volumes, const std::filesystem::path& path);
+
+/// Reads every sheet volume of a file written by writeVolumes or writeVolume (older files: one
+/// volume), in sheet order. Throws InputError naming the file as readVolume, naming the sheet
+/// whose grids or metadata are missing or malformed.
+std::vector<Volume> readVolumes(const std::filesystem::path& path);
 
 /// One grid in a VolumeReport.
 struct GridReport {
@@ -217,10 +254,22 @@ struct VolumeReport {
 /// Inspects the grids of a volume. Throws std::invalid_argument for an empty volume.
 VolumeReport inspectVolume(const Volume& volume);
 
+/// inspectVolume of each volume, in order. Throws std::invalid_argument for an empty volume.
+std::vector<VolumeReport> inspectVolumes(const std::vector<Volume>& volumes);
+
 /// Renders a report as an aligned text table.
 std::string formatVolumeReport(const VolumeReport& report);
 
 /// Renders a report as one JSON object.
 std::string volumeReportJson(const VolumeReport& report);
+
+/// Renders the reports of a part's sheet volumes: for one sheet formatVolumeReport; for several,
+/// each table under a "sheet K of N" heading. Precondition: reports not empty.
+std::string formatVolumeReports(const std::vector<VolumeReport>& reports);
+
+/// Renders the reports of a part's sheet volumes as JSON: for one sheet volumeReportJson; for
+/// several, {"sheet_count": N, "sheets": [one volumeReportJson object per sheet]}.
+/// Precondition: reports not empty.
+std::string volumeReportsJson(const std::vector<VolumeReport>& reports);
 
 }  // namespace voxremesh

@@ -94,8 +94,9 @@ void runVoxelize(const BatchJob& job, const JobSettings& settings, BatchResult& 
   std::size_t shells = 0;
   for (const Shell& shell : model.shells) shells += shell.part == part ? 1 : 0;
   result.elementsIn = shells;
-  writeVolume(buildVolume(sheets, volume, VolumeSource{job.input.string()}), job.output);
-  result.message = "part " + std::to_string(part);
+  writeVolumes(buildSheetVolumes(sheets, volume, VolumeSource{job.input.string()}), job.output);
+  result.message = "part " + std::to_string(part) + ", " + std::to_string(sheets.size()) +
+                   (sheets.size() == 1 ? " sheet" : " sheets");
 }
 
 void runConvert(const BatchJob& job, const JobSettings& settings, BatchResult& result) {

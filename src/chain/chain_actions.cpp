@@ -35,15 +35,21 @@ bool isVdb(const std::filesystem::path& path) {
   return extension == ".vdb";
 }
 
+/// ", N sheets" for a volume of several sheets, "" for one.
+std::string sheetCount(const std::vector<Volume>& volumes) {
+  return volumes.size() > 1 ? ", " + std::to_string(volumes.size()) + " sheets" : "";
+}
+
 void runRead(ChainState& state, const ActionCall& call) {
   const std::filesystem::path path = call.text("file");
   ChainItem item;
   item.name = path.string();
   if (isVdb(path)) {
     item.kind = Kind::Volume;
-    item.volume = readVolume(path);
-    say(state,
-        "read " + item.name + ": volume of part " + std::to_string(item.volume.info().part) + "\n");
+    item.volumes = readVolumes(path);
+    say(state, "read " + item.name + ": volume of part " +
+                   std::to_string(item.volumes.front().info().part) + sheetCount(item.volumes) +
+                   "\n");
   } else {
     ReadOptions options;
     if (call.has("format")) options.format = formatFromName(call.text("format"));
@@ -83,11 +89,11 @@ void runVoxelize(ChainState& state, const ActionCall& call) {
   ChainItem item;
   item.kind = Kind::Volume;
   item.name = "volume of part " + std::to_string(part) + " of " + source.name;
-  item.volume = buildVolume(sheets, settings, VolumeSource{source.name});
+  item.volumes = buildSheetVolumes(sheets, settings, VolumeSource{source.name});
   item.original = quadMeshFromModel(source.deck, part);
-  item.targetSize = item.volume.info().voxelSize;
+  item.targetSize = item.volumes.front().info().voxelSize;
   char text[160];
-  std::snprintf(text, sizeof text, ": voxel size %.6g, %zu sheets\n", item.volume.info().voxelSize,
+  std::snprintf(text, sizeof text, ": voxel size %.6g, %zu sheets\n", item.targetSize,
                 sheets.size());
   say(state, "voxelized part " + std::to_string(part) + text);
   state.stack.push_back(std::move(item));
@@ -99,17 +105,17 @@ void runExtract(ChainState& state, const ActionCall& call) {
   item.kind = Kind::Mesh;
   ExtractStats stats;
   if (call.flag("triangles")) {
-    item.mesh = extractTriangles(source.volume);
+    item.mesh = extractPartTriangles(source.volumes);
     item.name = "MC33 triangles of " + source.name;
   } else {
     ExtractSettings settings;
     settings.rebuildBoundary = call.flag("boundary");
     settings.snapFeatures = call.flag("features");
-    item.mesh = extractQuadMesh(source.volume, settings, &stats);
+    item.mesh = extractPartMesh(source.volumes, settings, &stats);
     item.name = "quad mesh of " + source.name;
   }
   item.original = source.original;
-  item.targetSize = source.volume.info().voxelSize;
+  item.targetSize = source.volumes.front().info().voxelSize;
   say(state,
       "extracted part " + std::to_string(item.mesh.part) + ": " + meshCounts(item.mesh) + "\n");
   state.stack.push_back(std::move(item));
@@ -121,7 +127,7 @@ void runWrite(ChainState& state, const ActionCall& call) {
   if (item.kind == Kind::Volume) {
     if (!isVdb(path))
       throw SettingError("the top item is a volume: write it to a .vdb file, not " + path.string());
-    writeVolume(item.volume, path);
+    writeVolumes(item.volumes, path);
     say(state, "wrote " + path.string() + "\n");
     return;
   }
@@ -168,7 +174,7 @@ void runPrint(ChainState& state, const ActionCall&) {
                      formatReportTable(reportDeck(item.deck)));
       return;
     case Kind::Volume:
-      say(state, item.name + "\n\n" + formatVolumeReport(inspectVolume(item.volume)));
+      say(state, item.name + "\n\n" + formatVolumeReports(inspectVolumes(item.volumes)));
       return;
     case Kind::Mesh:
       say(state, item.name + ": quad mesh of part " + std::to_string(item.mesh.part) + ", " +
@@ -184,8 +190,9 @@ void runSlice(ChainState& state, const ActionCall& call) {
   const long long scale = call.integer("scale");
   if (scale < 0 || scale > 64) throw SettingError("scale= must be within 0..64 (0: automatic)");
   style.pixelsPerVoxel = static_cast<int>(scale);
+  const Volume& volume = sheetVolume(item.volumes, call.integer("sheet"), "sheet=");
   const SliceImage image =
-      renderSlice(item.volume, axisFromName(call.text("axis")), call.number("at"), style);
+      renderSlice(volume, axisFromName(call.text("axis")), call.number("at"), style);
   writePng(image, call.text("file"));
   say(state, "wrote " + call.text("file") + ": " + std::to_string(image.width) + " x " +
                  std::to_string(image.height) + " pixels\n");
@@ -210,7 +217,7 @@ const std::vector<ActionDef> kActions = {
      runRead,
      ""},
     {"voxelize",
-     "write one part of the top deck into a signed-distance volume",
+     "write one part of the top deck into signed-distance volumes, one per sheet",
      "",
      {{"size", OptionType::Number, "", "target element size (default: median edge of the part)"},
       {"voxel", OptionType::Number, "", "voxel size instead of size="},
@@ -221,13 +228,15 @@ const std::vector<ActionDef> kActions = {
      runVoxelize,
      ""},
     {"extract",
-     "extract the quad mesh of the topmost volume (extract.h)",
+     "extract the quad mesh of the topmost volume, its sheets joined (extract.h)",
      "",
      {{"boundary", OptionType::Flag, "1", "rebuild the strip up to the boundary loops"},
       {"features", OptionType::Flag, "1", "snap vertices to feature lines and points"},
       {"triangles", OptionType::Flag, "0", "the MC33 triangles instead (inspection)"}},
      runExtract,
-     ""},
+     "Each sheet volume is extracted on its own; the sheets' meshes are then joined at the\n"
+     "nodes they share on their junction curves (one conforming mesh). triangles=1 gives the\n"
+     "sheets' MC33 triangles one after the other, not joined.\n"},
     {"optimize",
      "optimise the topmost quad mesh against the surface it was extracted from (optimize.h)",
      "",
@@ -272,7 +281,7 @@ const std::vector<ActionDef> kActions = {
      "A quad mesh is written into a copy of the topmost deck holding its part (the part's shells\n"
      "replaced, node references remapped), or alone when no deck holds it.\n"},
     {"print",
-     "print a report of the top item (deck: mesh report; volume: grids)",
+     "print a report of the top item (deck: mesh report; volume: grids of each sheet)",
      "",
      {},
      runPrint,
@@ -283,9 +292,11 @@ const std::vector<ActionDef> kActions = {
      {kFile,
       {"axis", OptionType::Text, "", "x, y or z", true},
       {"at", OptionType::Number, "", "world coordinate along the axis", true},
-      {"scale", OptionType::Integer, "0", "pixels per voxel, 0 = automatic"}},
+      {"scale", OptionType::Integer, "0", "pixels per voxel, 0 = automatic"},
+      {"sheet", OptionType::Integer, "0", "the sheet whose volume to draw (0 = the first)"}},
      runSlice,
-     ""},
+     "A volume holds one grid set per sheet of its part (sheets meeting at a T-junction are\n"
+     "voxelised apart); sheet= picks one, 0..sheets-1 (-print lists them).\n"},
     {"save-chain",
      "write this whole chain as a config file for -config",
      "file",

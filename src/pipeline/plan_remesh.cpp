@@ -126,12 +126,11 @@ std::vector<SheetVolume> partVolumes(const FeModel& model, const PartPlan& plan,
   VolumeSettings volume = settings.volume;
   volume.rule = VoxelSizeRule::TargetElementSize;
   volume.targetElementSize = plan.targetSize;
+  std::vector<Volume> volumes = buildSheetVolumes(sheets, volume);
   std::vector<SheetVolume> result;
   result.reserve(sheets.size());
-  for (Sheet& sheet : sheets) {
-    Volume sheetVolume = buildVolume({sheet}, volume);
-    result.push_back({std::move(sheet), std::move(sheetVolume)});
-  }
+  for (std::size_t k = 0; k < sheets.size(); ++k)
+    result.push_back({std::move(sheets[k]), std::move(volumes[k])});
   return result;
 }
 

@@ -96,20 +96,6 @@ QuadMesh sheetSurface(const Sheet& sheet) {
   return mesh;
 }
 
-/// Adds the counts of one sheet's extraction to the part's.
-void addExtractStats(ExtractStats& sum, const ExtractStats& add) {
-  sum.surfaceCells += add.surfaceCells;
-  sum.tunnelCells += add.tunnelCells;
-  sum.skippedCells += add.skippedCells;
-  sum.cutCells += add.cutCells;
-  sum.dualVertices += add.dualVertices;
-  sum.dualQuads += add.dualQuads;
-  sum.stripQuads += add.stripQuads;
-  sum.stripTriangles += add.stripTriangles;
-  sum.snappedVertices += add.snappedVertices;
-  sum.junctionNodes += add.junctionNodes;
-}
-
 }  // namespace
 
 RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,

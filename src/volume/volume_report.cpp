@@ -179,4 +179,29 @@ std::string volumeReportJson(const VolumeReport& report) {
   return out;
 }
 
+std::vector<VolumeReport> inspectVolumes(const std::vector<Volume>& volumes) {
+  std::vector<VolumeReport> reports;
+  reports.reserve(volumes.size());
+  for (const Volume& volume : volumes) reports.push_back(inspectVolume(volume));
+  return reports;
+}
+
+std::string formatVolumeReports(const std::vector<VolumeReport>& reports) {
+  if (reports.size() == 1) return formatVolumeReport(reports.front());
+  std::string out;
+  for (std::size_t k = 0; k < reports.size(); ++k) {
+    out += (k ? "\nsheet " : "sheet ") + std::to_string(k) + " of " +
+           std::to_string(reports.size()) + "\n" + formatVolumeReport(reports[k]);
+  }
+  return out;
+}
+
+std::string volumeReportsJson(const std::vector<VolumeReport>& reports) {
+  if (reports.size() == 1) return volumeReportJson(reports.front());
+  std::string out = "{\"sheet_count\":" + std::to_string(reports.size()) + ",\"sheets\":[";
+  for (std::size_t k = 0; k < reports.size(); ++k)
+    out += (k ? "," : "") + volumeReportJson(reports[k]);
+  return out + "]}";
+}
+
 }  // namespace voxremesh

@@ -67,10 +67,9 @@ std::string readText(const std::filesystem::path& path) {
   return content.str();
 }
 
-CliResult runCli(const std::string& args) {
-  const std::string command = std::string(VOXREMESH_CLI) + " " + args + " 2>&1";
+CliResult runShell(const std::string& command) {
   CliResult result;
-  FILE* pipe = ::popen(command.c_str(), "r");
+  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
   if (!pipe) throw std::runtime_error("cannot run " + command);
   std::array<char, 4096> buffer{};
   std::size_t n = 0;
@@ -79,6 +78,10 @@ CliResult runCli(const std::string& args) {
   const int status = ::pclose(pipe);
   result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+CliResult runCli(const std::string& args) {
+  return runShell(std::string(VOXREMESH_CLI) + " " + args);
 }
 
 CliRun runCliSplit(const std::string& args) {

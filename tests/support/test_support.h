@@ -37,6 +37,10 @@ struct CliResult {
   std::string output;  ///< stdout and stderr together
 };
 
+/// Runs a /bin/sh command line and captures its output (stdout and stderr together) and exit
+/// code. Throws std::runtime_error when the shell cannot be started.
+CliResult runShell(const std::string& command);
+
 /// Runs `voxremesh ARGS` (arguments are passed to /bin/sh as written) and captures its output.
 CliResult runCli(const std::string& args);
 

@@ -1,5 +1,6 @@
-// voxremesh extract: reads a .vdb volume written by `voxremesh voxelize` and writes the quad mesh
-// extracted from it (dual quads, boundary strip, feature snapping), or the MC33 triangles.
+// voxremesh extract: reads the sheet volumes of a .vdb file written by `voxremesh voxelize` and
+// writes the quad mesh extracted from them (dual quads, boundary strip, feature snapping; the
+// sheets joined at their junction nodes), or the MC33 triangles.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include "cli_common.h"
 #include "voxremesh/extract.h"
 #include "voxremesh/io.h"
+#include "voxremesh/pipeline.h"
 #include "voxremesh/quad_mesh.h"
 #include "voxremesh/volume.h"
 
@@ -23,12 +25,15 @@ const char* const kHelp =
     "Reads a volume written by `voxremesh voxelize` and extracts its surface: one vertex per MC33\n"
     "surface component of every valid cell, one quad per sign-changing grid edge, the strip up\n"
     "to the original boundary loops (holes included) and vertices snapped onto feature lines\n"
-    "and points. Writes OUT in the format its extension names (.k .bdf .inp .obj .off .stl .ply\n"
-    ".vtu); the file is written completely or not at all. Prints a one-line summary.\n"
+    "and points. A volume of several sheets (a part whose sheets meet at a T-junction) gives one\n"
+    "mesh per sheet, joined at the nodes the sheets share on their junction curves. Writes OUT\n"
+    "in the format its extension names (.k .bdf .inp .obj .off .stl .ply .vtu); the file is\n"
+    "written completely or not at all. Prints a one-line summary.\n"
     "\n"
     "options:\n"
     "  -o OUT           the mesh to write (required)\n"
-    "  --triangles      write the MC33 triangulation of the valid cells instead (inspection)\n"
+    "  --triangles      write the MC33 triangulation of the valid cells instead (inspection;\n"
+    "                   the sheets' triangles one after the other, not joined)\n"
     "  --no-boundary    leave out the boundary strip: the bare dual mesh, stopping short of the\n"
     "                   boundary as the invalid mask makes it\n"
     "  --no-features    do not snap vertices to feature lines and points\n";
@@ -53,14 +58,14 @@ int runExtract(const std::vector<std::string>& args) {
     throw std::runtime_error("cannot write " + out.string() + ": no folder " +
                              out.parent_path().string());
 
-  const Volume volume = readVolume(parsed.positional[0]);
+  const std::vector<Volume> volumes = readVolumes(parsed.positional[0]);
   ExtractSettings settings;
   settings.rebuildBoundary = !parsed.has("--no-boundary");
   settings.snapFeatures = !parsed.has("--no-features");
   ExtractStats stats;
-  const QuadMesh mesh = parsed.has("--triangles") ? extractTriangles(volume)
-                                                  : extractQuadMesh(volume, settings, &stats);
-  const Id part = volume.info().part != 0 ? volume.info().part : 1;
+  const QuadMesh mesh = parsed.has("--triangles") ? extractPartTriangles(volumes)
+                                                  : extractPartMesh(volumes, settings, &stats);
+  const Id part = volumes.front().info().part != 0 ? volumes.front().info().part : 1;
   writeDeck(modelFromQuadMesh(mesh, part), out);
   std::size_t quads = 0;
   for (const auto& face : mesh.faces) quads += cornerCount(face) == 4 ? 1 : 0;
@@ -69,11 +74,12 @@ int runExtract(const std::vector<std::string>& args) {
   char text[512];
   std::snprintf(text, sizeof text,
                 "wrote %s: %zu nodes, %zu quads, %zu triangles (%llu surface cells, %llu tunnel "
-                "cells, %llu snapped vertices), %.2f s\n",
+                "cells, %llu snapped vertices, %zu sheet%s), %.2f s\n",
                 out.string().c_str(), mesh.points.size(), quads, mesh.faces.size() - quads,
                 static_cast<unsigned long long>(stats.surfaceCells),
                 static_cast<unsigned long long>(stats.tunnelCells),
-                static_cast<unsigned long long>(stats.snappedVertices), seconds);
+                static_cast<unsigned long long>(stats.snappedVertices), volumes.size(),
+                volumes.size() == 1 ? "" : "s", seconds);
   printOutput(text);
   return 0;
 }

@@ -19,7 +19,9 @@ const char* const kHelp =
     "feature): class, value type, active voxels, leaf nodes, memory, index and world bounding\n"
     "box and, for sdf, the range of the active values; then the invalid voxel and feature cell\n"
     "counts and the numbers of feature lines, feature points and boundary loops kept for\n"
-    "extraction.\n"
+    "extraction. A volume of several sheets (one per sheet of the part) is reported sheet by\n"
+    "sheet; its JSON is {\"sheet_count\": N, \"sheets\": [one report per sheet]} (one sheet:\n"
+    "the report itself).\n"
     "\n"
     "options:\n"
     "  --json   print the report as JSON instead of a table\n";
@@ -33,11 +35,11 @@ int runInspect(const std::vector<std::string>& args) {
   }
   const ParsedArgs parsed = parseArgs(args, {{"--json", false}}, 1, 1, kUsage);
   const std::string& path = parsed.positional[0];
-  const VolumeReport report = inspectVolume(readVolume(path));
+  const std::vector<VolumeReport> reports = inspectVolumes(readVolumes(path));
   if (parsed.has("--json")) {
-    printOutput(volumeReportJson(report) + "\n");
+    printOutput(volumeReportsJson(reports) + "\n");
   } else {
-    printOutput(path + "\n\n" + formatVolumeReport(report));
+    printOutput(path + "\n\n" + formatVolumeReports(reports));
   }
   return 0;
 }

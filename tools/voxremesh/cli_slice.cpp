@@ -13,7 +13,8 @@ namespace voxremesh::cli {
 namespace {
 
 const char* const kUsage =
-    "voxremesh slice PART.vdb --axis x|y|z --at WORLD_COORD -o SLICE.png [--scale PIXELS]";
+    "voxremesh slice PART.vdb --axis x|y|z --at WORLD_COORD -o SLICE.png [--scale PIXELS]\n"
+    "       [--sheet K]";
 
 const char* const kHelp =
     "Reads a volume written by `voxremesh voxelize` and draws the layer of voxels nearest to the\n"
@@ -37,7 +38,10 @@ const char* const kHelp =
     "                     volume's bounding box (`voxremesh inspect` shows it)\n"
     "  -o SLICE.png       the image to write (required)\n"
     "  --scale PIXELS     pixels per voxel, 1..64 (default: the largest in 2..16 that keeps\n"
-    "                     the image within 1200 pixels)\n";
+    "                     the image within 1200 pixels)\n"
+    "  --sheet K          the sheet whose volume to draw, 0..sheets-1 (default 0); a part whose\n"
+    "                     sheets meet at a T-junction has one volume per sheet (`voxremesh\n"
+    "                     inspect` lists them)\n";
 
 }  // namespace
 
@@ -47,7 +51,8 @@ int runSlice(const std::vector<std::string>& args) {
     return 0;
   }
   const ParsedArgs parsed = parseArgs(
-      args, {{"--axis", true}, {"--at", true}, {"-o", true}, {"--scale", true}}, 1, 1, kUsage);
+      args, {{"--axis", true}, {"--at", true}, {"-o", true}, {"--scale", true}, {"--sheet", true}},
+      1, 1, kUsage);
   const auto axisText = parsed.value("--axis"), atText = parsed.value("--at");
   const auto output = parsed.value("-o");
   if (!axisText) throw UsageError("missing --axis x|y|z", kUsage);
@@ -66,7 +71,10 @@ int runSlice(const std::vector<std::string>& args) {
   if (out.extension() != ".png")
     printWarnings({out.string() + " does not end in .png; image viewers may not recognise it"});
 
-  const SliceImage image = renderSlice(readVolume(parsed.positional[0]), axis, at, style);
+  const long long sheet =
+      parsed.has("--sheet") ? parseInteger("--sheet", *parsed.value("--sheet")) : 0;
+  const std::vector<Volume> volumes = readVolumes(parsed.positional[0]);
+  const SliceImage image = renderSlice(sheetVolume(volumes, sheet, "--sheet"), axis, at, style);
   writePng(image, out);
   char text[512];
   std::snprintf(text, sizeof text,

@@ -1,5 +1,5 @@
-// voxremesh voxelize: reads a deck, splits one part into sheets and writes its narrow-band
-// signed-distance volume (grids sdf, invalid, feature) to a .vdb file.
+// voxremesh voxelize: reads a deck, splits one part into sheets and writes their narrow-band
+// signed-distance volumes, one per sheet (grids sdf, invalid, feature each), to one .vdb file.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -21,12 +21,15 @@ const char* const kUsage =
     "       [--feature-angle DEG] [--invalid-angle DEG] [--format F]";
 
 const char* const kHelp =
-    "Reads DECK, splits one part into manifold, consistently oriented sheets and writes them into\n"
-    "a narrow-band signed-distance volume: a .vdb file with the grids sdf (float, level set),\n"
-    "invalid (mask: voxels whose closest point is on a free boundary, seen at a steep angle) and\n"
-    "feature (mask: cells crossed by feature lines), for vdb_print, vdb_view, Houdini, Blender\n"
-    "and `voxremesh inspect` / `voxremesh slice`. Prints a one-line summary; warnings about the\n"
-    "input go to stderr. The file is written completely or not at all.\n"
+    "Reads DECK, splits one part into manifold, consistently oriented sheets and writes each\n"
+    "sheet into a narrow-band signed-distance volume of its own, all at one voxel size (sheets\n"
+    "meeting at a T-junction have no common inside and outside). The .vdb file holds per sheet\n"
+    "the grids sdf (float, level set), invalid (mask: voxels whose closest point is on a free\n"
+    "boundary, seen at a steep angle) and feature (mask: cells crossed by feature lines); sheet\n"
+    "0's grids have these names, sheet K's the suffix .sheetK (sdf.sheet1, ...). For vdb_print,\n"
+    "vdb_view, Houdini, Blender and `voxremesh inspect` / `slice` / `extract`. Prints a one-line\n"
+    "summary (voxel counts summed over the sheets); warnings about the input go to stderr. The\n"
+    "file is written completely or not at all.\n"
     "\n"
     "options:\n"
     "  -o PART.vdb           the volume to write (required)\n"
@@ -131,9 +134,14 @@ int runVoxelize(const std::vector<std::string>& args) {
     throw std::runtime_error("part " + std::to_string(part) + " of " + deck +
                              " has no shell with an area to voxelize");
 
-  const Volume volume = buildVolume(sheets, settings, VolumeSource{deck});
-  writeVolume(volume, out);
-  const VolumeReport report = inspectVolume(volume);
+  const std::vector<Volume> volumes = buildSheetVolumes(sheets, settings, VolumeSource{deck});
+  writeVolumes(volumes, out);
+  unsigned long long active = 0, invalid = 0, feature = 0;
+  for (const VolumeReport& report : inspectVolumes(volumes)) {
+    active += report.grids.at(0).activeVoxels;
+    invalid += report.invalidVoxels;
+    feature += report.featureVoxels;
+  }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -143,10 +151,7 @@ int runVoxelize(const std::vector<std::string>& args) {
   std::snprintf(numbers, sizeof numbers,
                 "voxel size %.6g, %llu active voxels, %llu invalid voxels, %llu feature cells, "
                 "%.2f s\n",
-                volume.info().voxelSize,
-                static_cast<unsigned long long>(report.grids.at(0).activeVoxels),
-                static_cast<unsigned long long>(report.invalidVoxels),
-                static_cast<unsigned long long>(report.featureVoxels), seconds);
+                volumes.front().info().voxelSize, active, invalid, feature, seconds);
   printOutput("wrote " + out.string() + ": part " + std::to_string(part) + name + ", " +
               plural(sheets.size(), "sheet") + ", " + numbers);
   return 0;

@@ -23,7 +23,7 @@ constexpr Command kCommands[] = {
      voxremesh::cli::runRemesh},
     {"info", "mesh report per part: counts, sizes, topology checks", voxremesh::cli::runInfo},
     {"convert", "convert between deck and mesh formats", voxremesh::cli::runConvert},
-    {"voxelize", "write one part into a narrow-band signed-distance .vdb volume",
+    {"voxelize", "write one part into a .vdb: a narrow-band signed-distance volume per sheet",
      voxremesh::cli::runVoxelize},
     {"inspect", "report the grids of a .vdb volume: counts, bounds, values, settings",
      voxremesh::cli::runInspect},
