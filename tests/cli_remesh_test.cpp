@@ -10,8 +10,10 @@
 #include <string>
 
 #include "json/json.h"
+#include "support/mesh_topology.h"
 #include "support/test_support.h"
 #include "voxremesh/io.h"
+#include "voxremesh/sheets.h"
 
 namespace fs = std::filesystem;
 using namespace voxremesh;
@@ -141,6 +143,27 @@ TEST(RemeshCli, SamplePartWithDefaults) {
   Id maxIn = 0;
   for (const Shell& shell : in.shells) maxIn = std::max(maxIn, shell.id);
   for (const Shell& shell : out.shells) EXPECT_GT(shell.id, maxIn);
+}
+
+TEST(RemeshCli, WheelRemeshesWithItsTJunctionConnected) {
+  // The wheel's part is three sheets (rim front and back, disc) meeting along one ring: the
+  // remeshed part is one connected mesh again, the ring's edges shared by three faces, and it
+  // keeps every boundary loop of the sheets except the ring itself (counted once per sheet).
+  VOXREMESH_REQUIRE_SHARED_DECK(wheel, "wheel.k");
+  const fs::path dir = scratchDir("remesh_wheel");
+  const auto run =
+      runCli("remesh " + quoted(wheel) + " -o " + quoted(dir / "wheel.k") + " --quiet");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const FeModel in = readDeck(wheel);
+  const FeModel out = readDeck(dir / "wheel.k");
+  std::size_t sheetLoops = 0;
+  const std::vector<Sheet> sheets = buildSheets(in, 1);
+  ASSERT_EQ(sheets.size(), 3u);
+  for (const Sheet& sheet : sheets) sheetLoops += sheet.boundaryLoops.size();
+  const test::MeshTopology topology = test::meshTopology(quadMeshFromModel(out, 1));
+  EXPECT_EQ(topology.components, 1u);
+  EXPECT_GT(topology.nonManifoldEdges, 100u);  // the junction ring, about one edge per voxel
+  EXPECT_EQ(topology.boundaryLoops, sheetLoops - 3);
 }
 
 TEST(RemeshCli, BirdKeepsEveryOtherKeywordByteForByte) {
