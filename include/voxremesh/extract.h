@@ -38,6 +38,10 @@ struct ExtractSettings {
   bool rebuildBoundary = true;
   /// Move the vertices of cells marked in the feature mask onto the feature lines and points.
   bool snapFeatures = true;
+  /// The spacing of the nodes on junction curves; 0: the voxel size. Sheets or parts that share
+  /// a junction curve get the same nodes on it only with the same spacing (remeshDeck gives
+  /// parts that share nodes the smallest target size among them).
+  double junctionSpacing = 0.0;
 };
 
 /// What the extraction did, for reports and tests.

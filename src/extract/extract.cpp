@@ -106,7 +106,8 @@ QuadMesh extractQuadMesh(const Volume& volume, const ExtractSettings& settings,
   }
   if (rebuild) {
     const double voxel = volume.info().voxelSize;
-    const extract::JunctionNodes junctions(volume.junctionCurves(), voxel, 0.2 * voxel);
+    const double spacing = settings.junctionSpacing > 0.0 ? settings.junctionSpacing : voxel;
+    const extract::JunctionNodes junctions(volume.junctionCurves(), spacing, 0.2 * spacing);
     const extract::StripStats strip =
         extract::rebuildBoundaryStrip(mesh, loopCurves, volume.featurePoints(), junctions, voxel,
                                       0.2 * voxel, kStripReachVoxels * voxel);

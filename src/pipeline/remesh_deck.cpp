@@ -47,8 +47,11 @@ double since(std::chrono::steady_clock::time_point start) {
 
 /// For each plan, a model holding the part's shells plus the shells of other parts that share a
 /// node with it (so that buildSheets still finds the seams), and the nodes they use: sheets and
-/// volumes then cost what the part costs, not what the deck costs.
-std::vector<FeModel> partModels(const FeModel& deck, const std::vector<PartPlan>& plans) {
+/// volumes then cost what the part costs, not what the deck costs. `junctionSpacing` receives per
+/// plan the smallest target size among it and the planned parts it shares nodes with, so that
+/// both sides of a seam place the same nodes on it.
+std::vector<FeModel> partModels(const FeModel& deck, const std::vector<PartPlan>& plans,
+                                std::vector<double>& junctionSpacing) {
   std::unordered_map<Id, std::size_t> planOf;
   for (std::size_t i = 0; i < plans.size(); ++i) planOf[plans[i].part] = i;
   const std::unordered_map<Id, std::size_t> nodeIndex = deck.nodeIndex();
@@ -61,6 +64,15 @@ std::vector<FeModel> partModels(const FeModel& deck, const std::vector<PartPlan>
       std::vector<std::size_t>& list = plansOfNode[shell.nodes[static_cast<std::size_t>(c)]];
       if (std::find(list.begin(), list.end(), it->second) == list.end()) list.push_back(it->second);
     }
+  }
+  junctionSpacing.resize(plans.size());
+  for (std::size_t i = 0; i < plans.size(); ++i) junctionSpacing[i] = plans[i].targetSize;
+  for (const auto& [node, list] : plansOfNode) {
+    if (list.size() < 2) continue;
+    double smallest = junctionSpacing[list[0]];
+    for (const std::size_t plan : list) smallest = std::min(smallest, plans[plan].targetSize);
+    for (const std::size_t plan : list)
+      junctionSpacing[plan] = std::min(junctionSpacing[plan], smallest);
   }
   std::vector<FeModel> models(plans.size());
   std::vector<std::size_t> targets;
@@ -104,7 +116,8 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
   RemeshReport report;
   const std::vector<PartPlan> plans = planRemesh(deck, settings);
   report.parts.resize(plans.size());
-  const std::vector<FeModel> models = partModels(deck, plans);
+  std::vector<double> junctionSpacing;
+  const std::vector<FeModel> models = partModels(deck, plans, junctionSpacing);
   std::vector<QuadMesh> meshes(plans.size());
   std::vector<std::exception_ptr> errors(plans.size());
   std::mutex progressMutex;
@@ -132,7 +145,10 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
           tell("extract", plans[i].part, false);
           stageStart = std::chrono::steady_clock::now();
           ExtractStats stats;
-          sheetMeshes.push_back(extractQuadMesh(sheet.volume, settings.extract, &stats));
+          ExtractSettings extractSettings = settings.extract;
+          if (extractSettings.junctionSpacing <= 0.0)
+            extractSettings.junctionSpacing = junctionSpacing[i];
+          sheetMeshes.push_back(extractQuadMesh(sheet.volume, extractSettings, &stats));
           addExtractStats(part.extract, stats);
           part.extractSeconds += since(stageStart);
           if (settings.optimize) {
