@@ -35,17 +35,23 @@ constexpr Step kSteps[5] = {{1, 1}, {2, 0}, {0, 2}, {1, 0}, {0, 1}};
 /// edge length ratio term, plus kTriangleCost for a triangle.
 double faceCost(const std::array<Vec3d, 4>& q, int corners, const Vec3d& normal) {
   double cost = corners == 3 ? kTriangleCost : 0.0;
-  double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
   const double scale = corners == 3 ? 2.0 / std::sqrt(3.0) : 1.0;
+  // Edge k runs from corner k to corner k + 1.
+  std::array<Vec3d, 4> edge;
+  std::array<double, 4> length{};
+  double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
   for (int k = 0; k < corners; ++k) {
-    const Vec3d& p = q[std::size_t(k)];
-    const Vec3d next = q[std::size_t((k + 1) % corners)] - p;
-    const Vec3d previous = q[std::size_t((k + corners - 1) % corners)] - p;
-    const double a = next.length(), b = previous.length();
-    shortest = std::min(shortest, a);
-    longest = std::max(longest, a);
-    if (a <= 0.0 || b <= 0.0) return kDegenerateCost;
-    const double s = next.cross(previous).dot(normal) / (a * b);
+    edge[std::size_t(k)] = q[std::size_t((k + 1) % corners)] - q[std::size_t(k)];
+    length[std::size_t(k)] = edge[std::size_t(k)].length();
+    if (length[std::size_t(k)] <= 0.0) return kDegenerateCost;
+    shortest = std::min(shortest, length[std::size_t(k)]);
+    longest = std::max(longest, length[std::size_t(k)]);
+  }
+  for (int k = 0; k < corners; ++k) {
+    const std::size_t previous = std::size_t((k + corners - 1) % corners);
+    // next x previous with previous = -edge[previous]
+    const double s = -edge[std::size_t(k)].cross(edge[previous]).dot(normal) /
+                     (length[std::size_t(k)] * length[previous]);
     cost += 1.0 - std::min(1.0, s * scale);
   }
   return cost + kLengthRatioWeight * (longest / shortest - 1.0);
