@@ -155,7 +155,7 @@ struct OptimizeSettings {
   double relaxDamping = 0.5;
   bool collapseRhombic = true;
   bool mergeTriangles = true;
-  /// Sweeps of improveFailingElements after the relaxation (0: none).
+  /// Sweeps of each improveFailingElements pass (before and after warping removal; 0: none).
   int improveSweeps = 5;
   /// A face is of zero area below zeroAreaFactor x targetSize^2.
   double zeroAreaFactor = 1e-4;
@@ -190,8 +190,8 @@ struct OptimizeStats {
 };
 
 /// Runs the steps: clean-up, rhombic collapse, clean-up, relaxation, triangle merging,
-/// relaxation, improvement of the failing elements, warping removal (last, so that no later step
-/// warps quads again).
+/// relaxation, improvement of the failing elements, warping removal, and the improvement once
+/// more (it takes only moves that leave fewer criteria failing around a point, warping included).
 /// @param mesh      the extracted mesh (preconditions at the top of the file)
 /// @param original  the original surface (built from the input shells), not empty
 /// @param settings  see OptimizeSettings

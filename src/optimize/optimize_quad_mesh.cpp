@@ -83,15 +83,22 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
     s.mergeSeconds = secondsSince(t);
     relax();
   }
-  if (settings.improveSweeps > 0 && quality.targetSize > 0.0) {
+  // The pass over failing elements before the warping removal and again after it: the flattened
+  // quads open moves the first pass could not take (bracket: 7.6 % failing with the first pass
+  // only, 5.4 % with both). It takes only moves that leave fewer criteria failing around the
+  // point, warping included, so the warped count does not grow back on balance.
+  const bool improve = settings.improveSweeps > 0 && quality.targetSize > 0.0;
+  auto improveFailing = [&] {
     const Clock::time_point t = Clock::now();
-    s.improvedMoves = improveFailingElements(mesh, original, quality, settings.improveSweeps);
-    s.improveSeconds = secondsSince(t);
-  }
+    s.improvedMoves += improveFailingElements(mesh, original, quality, settings.improveSweeps);
+    s.improveSeconds += secondsSince(t);
+  };
+  if (improve) improveFailing();
   const Clock::time_point t = Clock::now();
   s.warping = removeWarping(mesh, settings.warpingDeg, settings.warpingIterations,
                             settings.warpingMoveFactor * quality.targetSize);
   s.warpingSeconds = secondsSince(t);
+  if (improve) improveFailing();
   s.totalSeconds = secondsSince(start);
   if (stats) *stats = s;
 }
