@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_timing.h"
 #include "volume/volume_grids.h"
 #include "voxremesh/extract.h"
 #include "voxremesh/io.h"
@@ -42,19 +43,9 @@
 
 namespace {
 
+using voxremesh::bench::best;
+
 using voxremesh::QuadMesh;
-
-double seconds(const std::function<void()>& f) {
-  const auto start = std::chrono::steady_clock::now();
-  f();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-double best(int repeat, const std::function<void()>& f) {
-  double t = std::numeric_limits<double>::infinity();
-  for (int r = 0; r < repeat; ++r) t = std::min(t, seconds(f));
-  return t;
-}
 
 std::size_t quadCount(const QuadMesh& mesh) {
   std::size_t quads = 0;

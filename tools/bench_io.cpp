@@ -17,10 +17,13 @@
 #include <string>
 #include <vector>
 
+#include "bench_timing.h"
 #include "voxremesh/fe_model.h"
 #include "voxremesh/io.h"
 
 namespace {
+
+using voxremesh::bench::secondsSince;
 
 /// Peak resident memory of this process so far, in MiB.
 double peakMemoryMiB() {
@@ -59,10 +62,6 @@ voxremesh::FeModel makeGridDeck(std::size_t elements) {
     }
   for (voxremesh::Id p = 1; p <= 10; ++p) model.parts.push_back({p, "part " + std::to_string(p)});
   return model;
-}
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace

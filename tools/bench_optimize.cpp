@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_timing.h"
 #include "voxremesh/extract.h"
 #include "voxremesh/io.h"
 #include "voxremesh/optimize.h"
@@ -36,12 +37,10 @@
 
 namespace {
 
+using voxremesh::bench::secondsSince;
+
 using namespace voxremesh;
 using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 /// The number of boundary loops of a mesh: connected sets of edges that lie in one face.
 std::size_t boundaryLoops(const QuadMesh& mesh) {

@@ -27,6 +27,7 @@
 #include <filesystem>
 #include <string>
 
+#include "bench_timing.h"
 #include "voxremesh/io.h"
 #include "voxremesh/pipeline.h"
 #include "voxremesh/quad_mesh.h"
@@ -35,9 +36,7 @@ using namespace voxremesh;
 
 namespace {
 
-double seconds(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
+using voxremesh::bench::secondsSince;
 
 FeModel replicate(const FeModel& part, std::size_t copies) {
   FeModel deck;
@@ -102,7 +101,7 @@ double openvdbPipeline(const FeModel& deck, const RemeshReport& report, int thre
       counts[i] = surfaceQuads.size();
     });
   });
-  const double wall = seconds(start);
+  const double wall = secondsSince(start);
   for (const std::size_t c : counts) quads += c;
   return wall;
 }
@@ -146,16 +145,16 @@ int main(int argc, char** argv) {
   const auto total = std::chrono::steady_clock::now();
   auto stage = std::chrono::steady_clock::now();
   FeModel deck = readDeck(dir / "deck.k");
-  const double readSeconds = seconds(stage);
+  const double readSeconds = secondsSince(stage);
   const FeModel original = deck;
   const std::size_t before = deck.shells.size();
   stage = std::chrono::steady_clock::now();
   const RemeshReport report = remeshDeck(deck, settings);
-  const double remeshSeconds = seconds(stage);
+  const double remeshSeconds = secondsSince(stage);
   stage = std::chrono::steady_clock::now();
   writeDeck(deck, dir / "out.k");
-  const double writeSeconds = seconds(stage);
-  const double totalSeconds = seconds(total);
+  const double writeSeconds = secondsSince(stage);
+  const double totalSeconds = secondsSince(total);
   double volume = 0, extract = 0, optimize = 0;
   for (const RemeshedPart& p : report.parts) {
     volume += p.volumeSeconds;

@@ -29,12 +29,15 @@
 #include <string>
 #include <vector>
 
+#include "bench_timing.h"
 #include "volume/surface_mesh.h"
 #include "volume/volume_build.h"
 #include "volume/volume_grids.h"
 #include "voxremesh/volume.h"
 
 namespace {
+
+using voxremesh::bench::best;
 
 using voxremesh::PointIndex;
 using voxremesh::Sheet;
@@ -92,18 +95,6 @@ Sheet hatRail(double size) {
     sheet.featurePoints.push_back(index(i, nv));
   }
   return sheet;
-}
-
-double seconds(const std::function<void()>& f) {
-  const auto start = std::chrono::steady_clock::now();
-  f();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-double best(int repeat, const std::function<void()>& f) {
-  double t = std::numeric_limits<double>::infinity();
-  for (int r = 0; r < repeat; ++r) t = std::min(t, seconds(f));
-  return t;
 }
 
 /// meshToVolume's view of the rail, the same polygons voxremesh hands it.
