@@ -3,7 +3,7 @@
 // "Junctions"; pipeline.h partVolumes; quad_mesh.h joinAtJunctions).
 #include <gtest/gtest.h>
 
-#include <map>
+#include <limits>
 #include <set>
 
 #include "extract/junction_nodes.h"
@@ -17,22 +17,6 @@ namespace voxremesh {
 namespace {
 
 using Point3 = std::array<double, 3>;
-
-/// The edges of the mesh used by three or more faces, as segments.
-std::vector<std::array<Point3, 2>> nonManifoldSegments(const QuadMesh& mesh) {
-  std::map<std::pair<CornerIndex, CornerIndex>, int> uses;
-  for (const auto& face : mesh.faces) {
-    const int n = cornerCount(face);
-    for (int k = 0; k < n; ++k) {
-      const CornerIndex a = face[std::size_t(k)], b = face[std::size_t((k + 1) % n)];
-      ++uses[{std::min(a, b), std::max(a, b)}];
-    }
-  }
-  std::vector<std::array<Point3, 2>> result;
-  for (const auto& [edge, count] : uses)
-    if (count >= 3) result.push_back({mesh.points[edge.first], mesh.points[edge.second]});
-  return result;
-}
 
 TEST(JunctionNodes, SameNodesWhicheverWayAndWhereverTheCurveStarts) {
   // A closed square-ish curve with a bend, given from different start points and directions.
@@ -105,7 +89,8 @@ TEST(Junctions, WheelSheetsShareTheirNodesAlongTheTJunction) {
   EXPECT_EQ(topology.components, 1u);
   // Every point of the original junction curve lies on the new ring (within the strip's
   // tolerance of 0.2 voxel), so the T-junction stays where it was and connected.
-  const auto ring = nonManifoldSegments(joined);
+  // the edges of three or more faces
+  const auto ring = test::edgeSegments(joined, 3, std::numeric_limits<int>::max());
   const double voxel = volumes[0].volume.info().voxelSize;
   const Sheet& disc = volumes[2].sheet;
   double worst = 0.0;

@@ -1,6 +1,6 @@
 // The boundary strip of the extraction stage (paper Fig. 7): the dual mesh stops short of the
-// original boundary loops; this closes the gap with a strip of quads (triangles only where a
-// corner of the loop needs an extra node) whose outer nodes lie on the original loops.
+// original boundary loops; this closes the gap with a strip of quads (triangles only where no
+// quad fits, strip_zip.h) whose outer nodes lie on the original loops.
 #pragma once
 
 #include <array>

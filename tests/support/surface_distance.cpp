@@ -57,7 +57,7 @@ double distanceToMesh(const Point3& p, const QuadMesh& mesh) {
   return best;
 }
 
-std::vector<std::array<Point3, 2>> boundarySegments(const QuadMesh& mesh) {
+std::vector<std::array<Point3, 2>> edgeSegments(const QuadMesh& mesh, int minFaces, int maxFaces) {
   std::map<std::pair<CornerIndex, CornerIndex>, int> uses;
   for (const auto& f : mesh.faces) {
     const int n = cornerCount(f);
@@ -68,8 +68,13 @@ std::vector<std::array<Point3, 2>> boundarySegments(const QuadMesh& mesh) {
   }
   std::vector<std::array<Point3, 2>> segments;
   for (const auto& [edge, count] : uses)
-    if (count == 1) segments.push_back({mesh.points[edge.first], mesh.points[edge.second]});
+    if (count >= minFaces && count <= maxFaces)
+      segments.push_back({mesh.points[edge.first], mesh.points[edge.second]});
   return segments;
+}
+
+std::vector<std::array<Point3, 2>> boundarySegments(const QuadMesh& mesh) {
+  return edgeSegments(mesh, 1, 1);
 }
 
 std::vector<std::array<Point3, 2>> faceEdgeSegments(const QuadMesh& mesh) {

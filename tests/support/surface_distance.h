@@ -21,6 +21,10 @@ double pointSegmentDistance(const Point3& p, const Point3& a, const Point3& b);
 /// Distance from p to the closest face of the mesh.
 double distanceToMesh(const Point3& p, const QuadMesh& mesh);
 
+/// The distinct edges of a mesh used by at least minFaces and at most maxFaces faces, as
+/// segments, in ascending order of their point indices.
+std::vector<std::array<Point3, 2>> edgeSegments(const QuadMesh& mesh, int minFaces, int maxFaces);
+
 /// The boundary edges of a mesh (edges of one face), as segments.
 std::vector<std::array<Point3, 2>> boundarySegments(const QuadMesh& mesh);
 
