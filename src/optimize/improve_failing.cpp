@@ -100,9 +100,10 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
   for (int sweep = 0; sweep < sweeps; ++sweep) {
     // The movable points of the failing faces, in index order (deterministic).
     std::vector<CornerIndex> points;
-    for (const auto& face : mesh.faces) {
-      ElementQuality q;
-      if (faceFailures(mesh, face, settings, q) == 0) continue;
+    const std::vector<ElementQuality> qualities = elementQualities(mesh);  // in parallel
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+      const auto& face = mesh.faces[f];
+      if (elementFailures(qualities[f], cornerCount(face), settings) == 0) continue;
       for (int k = 0; k < cornerCount(face); ++k) {
         const CornerIndex v = face[std::size_t(k)];
         const PointRole role = opt::roleOf(mesh, v);
