@@ -1,7 +1,6 @@
-// improveFailingElements: moves the points of failing elements, one at a time, to the candidate
-// position that leaves their faces failing fewest criteria (see optimize.h).
+// improveFailingElements: moves the points of failing elements, one at a time, by a pattern
+// search on the surface that lowers the failures of their faces (see optimize.h).
 #include <algorithm>
-#include <bitset>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -16,72 +15,149 @@ using namespace geom;  // NOLINT: the vector operators
 
 namespace {
 
-/// How well the faces around a point do: fewer failed criteria first, then the larger smallest
-/// Jacobian ratio (as the settings evaluate it), then the larger smallest scaled Jacobian.
+/// How well the faces around a point do: fewer failed criteria first, then the smaller penalty
+/// (how far the metrics are beyond limits set a margin inside the criteria, see facePenalty).
 struct Score {
   int failures = 0;
-  double jacobian = 1.0;
-  double scaled = 1.0;
+  double penalty = 0.0;
   bool betterThan(const Score& other) const {
     if (failures != other.failures) return failures < other.failures;
-    if (jacobian != other.jacobian) return jacobian > other.jacobian + 1e-9;
-    return scaled > other.scaled + 1e-9;
+    return penalty < other.penalty - 1e-12;
   }
 };
 
-std::uint32_t faceFailures(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face,
-                           const QualitySettings& settings, ElementQuality& quality) {
-  const int n = cornerCount(face);
-  std::array<std::array<double, 3>, 4> p{};
-  for (int k = 0; k < n; ++k) p[std::size_t(k)] = mesh.points[face[std::size_t(k)]];
-  quality = elementQuality(p, n);
-  return elementFailures(quality, n, settings);
+/// The square of how far `value` is beyond `soft` (in units of `scale`; 0 when within it).
+double beyondMax(double value, double soft, double scale) {
+  const double d = (value - soft) / scale;
+  return d > 0.0 ? d * d : 0.0;
+}
+double beyondMin(double value, double soft, double scale) {
+  return beyondMax(soft, value, scale);
+}
+
+/// A smooth measure of how close a face comes to failing: each metric is penalised beyond a
+/// soft limit set inside the criterion's limit, so that moves keep a margin; NaN is the worst.
+double facePenalty(const ElementQuality& q, int corners, const QualitySettings& s) {
+  const double jacobian = s.jacobianAtGaussPoints ? q.jacobianRatioGauss : q.jacobianRatio;
+  double p = beyondMax(q.aspectRatio, 0.8 * s.maxAspectRatio, 1.0) +
+             beyondMax(q.skewDeg, 0.8 * s.maxSkewDeg, 10.0) +
+             beyondMin(q.scaledJacobian, s.minScaledJacobian + 0.15, 0.1) +
+             beyondMin(q.minLength, (s.minLengthFactor + 0.15) * s.targetSize, 0.1 * s.targetSize);
+  if (corners == 4) {
+    p += beyondMax(q.warpingDeg, 0.7 * s.maxWarpingDeg, 5.0) +
+         beyondMin(q.minAngleDeg, s.minQuadAngleDeg + 10.0, 10.0) +
+         beyondMax(q.maxAngleDeg, s.maxQuadAngleDeg - 10.0, 10.0) +
+         beyondMin(jacobian, s.minJacobianRatio + 0.1, 0.1) +
+         beyondMax(q.taper, s.maxTaper - 0.15, 0.1);
+  } else {
+    p += beyondMin(q.minAngleDeg, s.minTriaAngleDeg + 5.0, 10.0) +
+         beyondMax(q.maxAngleDeg, s.maxTriaAngleDeg - 10.0, 10.0);
+  }
+  return std::isnan(p) ? 1e30 : p;
 }
 
 Score scoreAround(const QuadMesh& mesh, const opt::Topology& t, CornerIndex v,
                   const QualitySettings& settings) {
   Score score;
   for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f) {
-    ElementQuality q;
-    score.failures += int(std::bitset<32>(faceFailures(mesh, mesh.faces[*f], settings, q)).count());
-    if (cornerCount(mesh.faces[*f]) == 4)
-      score.jacobian = std::min(
-          score.jacobian, settings.jacobianAtGaussPoints ? q.jacobianRatioGauss : q.jacobianRatio);
-    score.scaled = std::min(score.scaled, q.scaledJacobian);
+    const auto& face = mesh.faces[*f];
+    const int n = cornerCount(face);
+    std::array<std::array<double, 3>, 4> p{};
+    for (int k = 0; k < n; ++k) p[std::size_t(k)] = mesh.points[face[std::size_t(k)]];
+    const ElementQuality q = elementQuality(p, n);
+    score.failures += __builtin_popcount(elementFailures(q, n, settings));
+    score.penalty += facePenalty(q, n, settings);
   }
   return score;
 }
 
-/// Positions worth trying for point v: the centroid of its edge neighbours, the mean of the
-/// positions that would make each of its quads a parallelogram, and half-way steps to both.
-std::vector<Vec3> candidates(const QuadMesh& mesh, const opt::Topology& t, CornerIndex v) {
-  const Vec3& p = mesh.points[v];
-  Vec3 centroid{0.0, 0.0, 0.0};
-  for (const std::uint32_t* w = t.nbrsBegin(v); w != t.nbrsEnd(v); ++w)
-    centroid = centroid + mesh.points[*w];
-  centroid = centroid * (1.0 / double(std::max<std::size_t>(1, t.degree(v))));
-  Vec3 parallelogram{0.0, 0.0, 0.0};
-  std::vector<Vec3> single;
-  int quads = 0;
+/// A unit normal of the surface at v (the sum of its faces' normals) and the mean length of its
+/// edges.
+void localFrame(const QuadMesh& mesh, const opt::Topology& t, CornerIndex v, Vec3& normal,
+                double& edge) {
+  const auto& p = mesh.points;
+  Vec3 sum{0.0, 0.0, 0.0};
   for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f) {
     const auto& face = mesh.faces[*f];
-    if (cornerCount(face) != 4) continue;
-    std::size_t k = 0;
-    while (face[k] != v) ++k;
-    const Vec3 own = mesh.points[face[(k + 1) % 4]] + mesh.points[face[(k + 3) % 4]] -
-                     mesh.points[face[(k + 2) % 4]];
-    parallelogram = parallelogram + own;
-    single.push_back((p + own) * 0.5);
-    ++quads;
+    sum = sum + (cornerCount(face) == 3 ? cross(p[face[1]] - p[face[0]], p[face[2]] - p[face[0]])
+                                        : cross(p[face[2]] - p[face[0]], p[face[3]] - p[face[1]]));
   }
-  std::vector<Vec3> result{centroid, (p + centroid) * 0.5};
-  if (quads > 0) {
-    parallelogram = parallelogram * (1.0 / quads);
-    result.push_back(parallelogram);
-    result.push_back((p + parallelogram) * 0.5);
+  normal = normalized(sum);
+  edge = 0.0;
+  for (const std::uint32_t* w = t.nbrsBegin(v); w != t.nbrsEnd(v); ++w)
+    edge += distance(p[v], p[*w]);
+  edge /= double(std::max<std::size_t>(1, t.degree(v)));
+}
+
+/// The points of the faces that fail a criterion and can move, ascending.
+std::vector<CornerIndex> pointsOfFailingFaces(const QuadMesh& mesh, const opt::Topology& t,
+                                              const QualitySettings& settings) {
+  std::vector<CornerIndex> points;
+  const std::vector<ElementQuality> qualities = elementQualities(mesh);  // in parallel
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& face = mesh.faces[f];
+    if (elementFailures(qualities[f], cornerCount(face), settings) == 0) continue;
+    for (int k = 0; k < cornerCount(face); ++k) {
+      const CornerIndex v = face[std::size_t(k)];
+      const PointRole role = opt::roleOf(mesh, v);
+      const bool free = role == PointRole::Free && !t.boundary[v];
+      if (free || role == PointRole::Boundary || role == PointRole::Feature) points.push_back(v);
+    }
   }
-  result.insert(result.end(), single.begin(), single.end());
-  return result;
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  return points;
+}
+
+/// The pattern search of one point (see improveFailingElements). Returns whether it moved.
+bool improvePoint(QuadMesh& mesh, const opt::Topology& t, const ReferenceSurface& original,
+                  const QualitySettings& settings, CornerIndex v) {
+  const Vec3 start = mesh.points[v];
+  const bool free = opt::roleOf(mesh, v) == PointRole::Free;
+  Vec3 normal;
+  double edge = 0.0;
+  localFrame(mesh, t, v, normal, edge);
+  if (!(edge > 0.0) || norm(normal) == 0.0) return false;
+  // An in-plane basis.
+  const Vec3 axis = std::abs(normal[0]) < 0.9 ? Vec3{1.0, 0.0, 0.0} : Vec3{0.0, 1.0, 0.0};
+  const Vec3 u = normalized(cross(normal, axis));
+  const Vec3 w = cross(normal, u);
+  const std::array<Vec3, 8> directions = {u,
+                                          u * -1.0,
+                                          w,
+                                          w * -1.0,
+                                          normalized(u + w),
+                                          normalized(u - w) * -1.0,
+                                          normalized(u - w),
+                                          normalized(u + w) * -1.0};
+  std::uint32_t hint = kNoCorner;
+  auto place = [&](const Vec3& wanted) {
+    if (!free) return opt::constrainedPosition(mesh, v, wanted);
+    const SurfaceHit hit = original.closestPoint(wanted, hint);
+    hint = hit.face;
+    return hit.point;
+  };
+  Score best = scoreAround(mesh, t, v, settings);
+  if (best.failures == 0 && best.penalty == 0.0) return false;
+  Vec3 position = start;
+  for (double step = 0.3 * edge; step > 0.004 * edge; step *= 0.5) {
+    bool improved = true;
+    for (int round = 0; improved && round < 8; ++round) {
+      improved = false;
+      for (const Vec3& direction : directions) {
+        mesh.points[v] = place(position + direction * step);
+        const Score score = scoreAround(mesh, t, v, settings);
+        if (score.betterThan(best)) {
+          best = score;
+          position = mesh.points[v];
+          improved = true;
+          break;
+        }
+      }
+    }
+  }
+  mesh.points[v] = position;
+  return position != start;
 }
 
 }  // namespace
@@ -98,43 +174,10 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
   const opt::Topology topology = opt::buildTopology(mesh);
   std::size_t moved = 0;
   for (int sweep = 0; sweep < sweeps; ++sweep) {
-    // The movable points of the failing faces, in index order (deterministic).
-    std::vector<CornerIndex> points;
-    const std::vector<ElementQuality> qualities = elementQualities(mesh);  // in parallel
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-      const auto& face = mesh.faces[f];
-      if (elementFailures(qualities[f], cornerCount(face), settings) == 0) continue;
-      for (int k = 0; k < cornerCount(face); ++k) {
-        const CornerIndex v = face[std::size_t(k)];
-        const PointRole role = opt::roleOf(mesh, v);
-        const bool free = role == PointRole::Free && !topology.boundary[v];
-        if (free || role == PointRole::Boundary || role == PointRole::Feature) points.push_back(v);
-      }
-    }
-    std::sort(points.begin(), points.end());
-    points.erase(std::unique(points.begin(), points.end()), points.end());
+    // One point at a time in index order: deterministic whatever the thread count.
     std::size_t movedThisSweep = 0;
-    for (const CornerIndex v : points) {
-      const Vec3 start = mesh.points[v];
-      const Score initial = scoreAround(mesh, topology, v, settings);
-      Score best = initial;
-      Vec3 bestPosition = start;
-      // Free points: the candidates are weighed where they are (near the surface) and only the
-      // best is projected on it, then taken if it is still better.
-      const bool free = opt::roleOf(mesh, v) == PointRole::Free;
-      for (const Vec3& wanted : candidates(mesh, topology, v)) {
-        mesh.points[v] = free ? wanted : opt::constrainedPosition(mesh, v, wanted);
-        const Score score = scoreAround(mesh, topology, v, settings);
-        if (score.betterThan(best)) best = score, bestPosition = mesh.points[v];
-      }
-      if (free && bestPosition != start) {
-        mesh.points[v] = original.closestPoint(bestPosition).point;
-        bestPosition =
-            scoreAround(mesh, topology, v, settings).betterThan(initial) ? mesh.points[v] : start;
-      }
-      mesh.points[v] = bestPosition;
-      if (bestPosition != start) ++movedThisSweep;
-    }
+    for (const CornerIndex v : pointsOfFailingFaces(mesh, topology, settings))
+      movedThisSweep += improvePoint(mesh, topology, original, settings, v) ? 1 : 0;
     moved += movedThisSweep;
     if (movedThisSweep == 0) break;
   }
