@@ -9,9 +9,11 @@
 // failing share is given for all criteria of quality.h and for the ones the shared data README
 // measures the input decks with (warping, angles, aspect, scaled Jacobian).
 // Options: --part PID (a deck with several parts), --size H, --threads N (default: all),
-// --repeat N (default 3), -o OUT.k (write the optimised mesh).
+// --repeat N (default 3), --short-edge F (OptimizeSettings::shortEdgeFactor), -o OUT.k (write the
+// optimised mesh).
 //
-// usage: bench_optimize [DECK] [--part PID] [--size H] [--threads N] [--repeat N] [-o OUT.k]
+// usage: bench_optimize [DECK] [--part PID] [--size H] [--threads N] [--repeat N] [--short-edge F]
+// [-o OUT.k]
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
@@ -112,6 +114,7 @@ int run(int argc, char** argv) {
   std::string deck = "../shared/data/bracket.k", out;
   double size = 4.5;
   int threads = 0, repeat = 3;
+  double shortEdge = -1.0;
   Id part = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -124,6 +127,8 @@ int run(int argc, char** argv) {
       repeat = std::max(1, std::atoi(argv[++i]));
     else if (arg == "--part" && hasValue)
       part = std::atoll(argv[++i]);
+    else if (arg == "--short-edge" && hasValue)
+      shortEdge = std::atof(argv[++i]);
     else if (arg == "-o" && hasValue)
       out = argv[++i];
     else if (!arg.empty() && arg[0] != '-')
@@ -131,7 +136,7 @@ int run(int argc, char** argv) {
     else {
       std::fprintf(stderr,
                    "usage: bench_optimize [DECK] [--part PID] [--size H] [--threads N] [--repeat "
-                   "N] [-o OUT.k]\n");
+                   "N] [--short-edge F] [-o OUT.k]\n");
       return 2;
     }
   }
@@ -173,6 +178,7 @@ int run(int argc, char** argv) {
 
   OptimizeSettings settings;
   settings.quality.targetSize = size;
+  if (shortEdge >= 0.0) settings.shortEdgeFactor = shortEdge;
   OptimizeStats best;
   QuadMesh optimised;
   for (int r = 0; r < repeat; ++r) {

@@ -126,15 +126,18 @@ CleanupResult cleanUpMesh(QuadMesh& mesh, const CleanupSettings& settings);
 /// Throws std::invalid_argument for targetSize <= 0 or a bad mesh; SettingError for bad settings.
 std::size_t mergeTrianglePairs(QuadMesh& mesh, const QualitySettings& settings);
 
-/// Moves the points of failing elements one at a time (in index order, so the result does not
-/// depend on the thread count) to the best of a few candidate positions: the centroid of the
-/// point's edge neighbours, the mean of the positions that make each of its quads a
-/// parallelogram, and the half-way steps to both; Free points projected on `original`, curve
-/// points kept on their curves, Corners and Junction points fixed. A move is taken only when the
+/// Moves the points of failing elements by a pattern search: steps of 0.25 x the point's mean
+/// edge length, halved down to 0.01 x, in eight directions of the tangent plane (the plane normal
+/// to the sum of its faces' normals); Free points are projected on `original` after every step,
+/// curve points kept on their curves, Corners and Junction points fixed. A step is taken when the
 /// faces around the point then fail fewer criteria (quality.h, under `settings`), or as many with
-/// a larger smallest Jacobian ratio or scaled Jacobian. Repeats up to `sweeps` times or until no
-/// point moves.
-/// @return the number of moves made
+/// a smaller penalty: the squares of how far each metric lies beyond a soft limit a margin inside
+/// its criterion (e.g. 55 .. 125 degrees for quad angles, 0.7 for the Jacobian ratio). Points that
+/// share no face are independent: they are split greedily in index order into classes, each class
+/// searched in parallel and the classes one after another, so the result does not depend on the
+/// thread count. Repeats up to `sweeps` times over the points of the faces still failing, or until
+/// no point moves.
+/// @return the number of point moves made
 /// Throws std::invalid_argument for an empty surface, negative sweeps, settings.targetSize <= 0
 /// or a bad mesh; SettingError for bad settings.
 std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& original,
@@ -155,8 +158,9 @@ struct OptimizeSettings {
   double relaxDamping = 0.5;
   bool collapseRhombic = true;
   bool mergeTriangles = true;
-  /// Sweeps of each improveFailingElements pass (before and after warping removal; 0: none).
-  int improveSweeps = 5;
+  /// Sweeps of each improveFailingElements pass (before and after warping removal; 0: none). On
+  /// the bracket at 4.5 mm: 1 sweep 5.3 % failing, 3 sweeps 4.5 %; more gain nothing.
+  int improveSweeps = 3;
   /// A face is of zero area below zeroAreaFactor x targetSize^2.
   double zeroAreaFactor = 1e-4;
   /// Edges shorter than shortEdgeFactor x targetSize are collapsed in the clean-up. Off by default:

@@ -1,5 +1,8 @@
 // improveFailingElements: moves the points of failing elements, one at a time, by a pattern
 // search on the surface that lowers the failures of their faces (see optimize.h).
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -109,6 +112,30 @@ std::vector<CornerIndex> pointsOfFailingFaces(const QuadMesh& mesh, const opt::T
   return points;
 }
 
+/// Splits `points` (ascending) into classes of points that share no face, greedily in index
+/// order: each point goes to the first class none of whose points shares a face with it.
+std::vector<std::vector<CornerIndex>> independentClasses(const QuadMesh& mesh,
+                                                         const opt::Topology& t,
+                                                         const std::vector<CornerIndex>& points) {
+  std::vector<int> colour(mesh.points.size(), -1);
+  std::vector<std::vector<CornerIndex>> classes;
+  std::vector<std::uint8_t> taken;
+  for (const CornerIndex v : points) {
+    taken.assign(classes.size() + 1, 0);
+    for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f)
+      for (int k = 0; k < cornerCount(mesh.faces[*f]); ++k) {
+        const int c = colour[mesh.faces[*f][std::size_t(k)]];
+        if (c >= 0) taken[std::size_t(c)] = 1;
+      }
+    std::size_t c = 0;
+    while (taken[c]) ++c;
+    if (c == classes.size()) classes.emplace_back();
+    classes[c].push_back(v);
+    colour[v] = int(c);
+  }
+  return classes;
+}
+
 /// The pattern search of one point (see improveFailingElements). Returns whether it moved.
 bool improvePoint(QuadMesh& mesh, const opt::Topology& t, const ReferenceSurface& original,
                   const QualitySettings& settings, CornerIndex v) {
@@ -140,7 +167,7 @@ bool improvePoint(QuadMesh& mesh, const opt::Topology& t, const ReferenceSurface
   Score best = scoreAround(mesh, t, v, settings);
   if (best.failures == 0 && best.penalty == 0.0) return false;
   Vec3 position = start;
-  for (double step = 0.3 * edge; step > 0.004 * edge; step *= 0.5) {
+  for (double step = 0.25 * edge; step > 0.01 * edge; step *= 0.5) {
     bool improved = true;
     for (int round = 0; improved && round < 8; ++round) {
       improved = false;
@@ -173,11 +200,23 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
   opt::checkMesh(mesh);
   const opt::Topology topology = opt::buildTopology(mesh);
   std::size_t moved = 0;
+  std::vector<std::uint8_t> movedNow(mesh.points.size(), 0);
   for (int sweep = 0; sweep < sweeps; ++sweep) {
-    // One point at a time in index order: deterministic whatever the thread count.
+    // Points that share no face do not see each other's moves: the points of one colour class
+    // are improved in parallel, the classes one after another, so the result does not depend
+    // on the thread count.
+    const std::vector<std::vector<CornerIndex>> classes =
+        independentClasses(mesh, topology, pointsOfFailingFaces(mesh, topology, settings));
     std::size_t movedThisSweep = 0;
-    for (const CornerIndex v : pointsOfFailingFaces(mesh, topology, settings))
-      movedThisSweep += improvePoint(mesh, topology, original, settings, v) ? 1 : 0;
+    for (const std::vector<CornerIndex>& points : classes) {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 8),
+                        [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t i = r.begin(); i < r.end(); ++i)
+                            movedNow[points[i]] =
+                                improvePoint(mesh, topology, original, settings, points[i]) ? 1 : 0;
+                        });
+      for (const CornerIndex v : points) movedThisSweep += movedNow[v];
+    }
     moved += movedThisSweep;
     if (movedThisSweep == 0) break;
   }
