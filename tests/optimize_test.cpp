@@ -417,6 +417,49 @@ TEST(ImproveFailingElements, MovesPlantedPointsBackUntilNothingFails) {
   EXPECT_THROW(voxremesh::improveFailingElements(mesh, plane, settings), std::invalid_argument);
 }
 
+TEST(ImproveFailingElements, JitteredCylinderFailsFarLessStaysOnItAndIgnoresThreads) {
+  // Interior points of a quarter cylinder jittered by up to 0.45 of an edge: many quads fail the
+  // angle, skew and Jacobian criteria. The pattern search must fix most of them, in parallel
+  // colour classes, with the same bytes for one and two threads, every point on its surface.
+  const int n = 16;
+  const ReferenceSurface fine(cylinder(4 * n, 0.0, 0));
+  voxremesh::QualitySettings settings;
+  settings.targetSize = 0.5 * kPi * 10.0 / n;
+  auto failing = [&](const QuadMesh& mesh) {
+    std::size_t count = 0;
+    const auto qualities = voxremesh::elementQualities(mesh);
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+      count += voxremesh::elementFailures(qualities[f], 4, settings) != 0 ? 1 : 0;
+    return count;
+  };
+  const std::size_t before = failing(cylinder(n, 0.45, 7));
+  ASSERT_GT(before, 40u);
+  auto run = [&](int threads) {
+    tbb::global_control control(tbb::global_control::max_allowed_parallelism,
+                                static_cast<std::size_t>(threads));
+    QuadMesh mesh = cylinder(n, 0.45, 7);
+    EXPECT_GT(voxremesh::improveFailingElements(mesh, fine, settings, 3), 0u);
+    return mesh;
+  };
+  const QuadMesh one = run(1), two = run(2);
+  EXPECT_EQ(
+      std::memcmp(one.points.data(), two.points.data(), one.points.size() * sizeof(one.points[0])),
+      0);
+  EXPECT_LT(failing(one), before / 10) << before;
+  // Free points on the cylinder (the fine reference's chord error is below 0.001), boundary points
+  // on their curve (a polyline through the coarse boundary points).
+  const auto& boundary = one.curves[0];
+  for (std::size_t v = 0; v < one.points.size(); ++v) {
+    const auto& p = one.points[v];
+    if (one.constraints[v].role == PointRole::Free) {
+      EXPECT_NEAR(std::hypot(p[0], p[2]), 10.0, 0.001) << v;
+    } else {
+      const auto q = voxremesh::closestPointOnPolyline(boundary.points, boundary.closed, p);
+      EXPECT_LT(std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]), 1e-9) << v;
+    }
+  }
+}
+
 TEST(RelaxMesh, EqualisesAJitteredCylinderAndStaysOnIt) {
   const int n = 10;
   QuadMesh mesh = cylinder(n, 0.35, 3);
