@@ -58,6 +58,9 @@ struct ExtractStats {
   std::uint64_t stripTriangles = 0;   ///< triangles of the rebuilt boundary strip
   std::uint64_t snappedVertices = 0;  ///< vertices moved onto feature lines or points
   std::uint64_t junctionNodes = 0;    ///< boundary nodes placed on junction curves
+  /// Nodes inside the surface along the bridges of the boundary strip (a neck between two loops
+  /// the dual mesh did not pass, longer than 1.5 voxels), each laid on the zero level set.
+  std::uint64_t bridgeNodes = 0;
 };
 
 /// Extracts the quad mesh of a volume (see the top of the file).

@@ -175,13 +175,33 @@ TargetLoop joinLoops(const QuadMesh& mesh, const std::vector<std::uint32_t>& cur
 }
 
 /// A node of the strip's outer side: its arc length on the loop (relative to the strip's base),
-/// what prescribes it, and for a junction node its index in JunctionStretches::nodes.
+/// what prescribes it, for a junction node its index in JunctionStretches::nodes, and for a node
+/// inside a bridge its step along the bridge (see bridgePoint).
 struct OuterNode {
-  enum class Kind : std::uint8_t { Plain, Corner, Junction };
+  enum class Kind : std::uint8_t { Plain, Corner, Junction, Bridge };
   double param = 0.0;
   Kind kind = Kind::Plain;
   std::size_t junctionNode = std::numeric_limits<std::size_t>::max();
+  long bridgeStep = 0;
 };
+
+/// The number of pieces a bridge from p to q is cut into: about `spacing` long each. The same
+/// for both visits of a bridge (it depends on the unordered pair of ends only).
+long bridgePieces(const std::array<double, 3>& p, const std::array<double, 3>& q, double spacing) {
+  return std::max(1L, std::lround((toVec(p) - toVec(q)).length() / spacing));
+}
+
+/// The node `step` of `pieces` along the bridge from p to q, computed from the lexicographically
+/// smaller end, so that both visits of the bridge (p to q and back) get bit-identical nodes and
+/// the weld makes each one node inside the surface.
+std::array<double, 3> bridgePoint(const std::array<double, 3>& p, const std::array<double, 3>& q,
+                                  long step, long pieces) {
+  const bool forward = p < q;
+  const Vec3d a = toVec(forward ? p : q), b = toVec(forward ? q : p);
+  const double t = double(forward ? step : pieces - step) / double(pieces);
+  const Vec3d x = a + (b - a) * t;
+  return {x[0], x[1], x[2]};
+}
 
 /// A node the junction curves prescribe on the target loop.
 struct JunctionNode {
@@ -359,10 +379,30 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
     return !junction && !onBridge(middle);
   };
   auto wrap = [&](double c) { return c >= length ? c - length : c; };
+  // Whether the gap [c0, c1] is exactly one bridge segment (from one bridge end to the other).
+  auto isWholeBridge = [&](double c0, double c1) {
+    const std::size_t segment = target.segmentAt(loop, absolute(0.5 * (c0 + c1)));
+    const double bridge = loop.vertexParam(segment + 1) - loop.vertexParam(segment);
+    return std::abs((c1 - c0) - bridge) <= 1e-9 * length;
+  };
   // Evenly spaced nodes between the anchors, about `spacing` apart.
   std::vector<OuterNode> nodes;
   for (std::size_t j = 0; j < anchors.size(); ++j) {
     nodes.push_back(anchors[j]);
+    const double middle = 0.5 * (anchors[j].param + gapEnd(anchors, j));
+    if (onBridge(middle) && isWholeBridge(anchors[j].param, gapEnd(anchors, j))) {
+      // A bridge across a neck the dual mesh did not pass: nodes inside the surface about
+      // `spacing` apart, so that the faces across the neck are of the element size and the
+      // optimisation can lay them on the surface (they are Free points once welded).
+      const std::size_t segment = target.segmentAt(loop, absolute(middle));
+      const long pieces = bridgePieces(
+          target.points[segment], target.points[(segment + 1) % target.points.size()], spacing);
+      const double c0 = anchors[j].param, c1 = gapEnd(anchors, j);
+      for (long q = 1; q < pieces; ++q)
+        nodes.push_back(
+            {wrap(c0 + (c1 - c0) * double(q) / double(pieces)), OuterNode::Kind::Bridge, kNone, q});
+      continue;
+    }
     if (!splittable(anchors, j)) continue;
     const double c0 = anchors[j].param, c1 = gapEnd(anchors, j);
     const long pieces = std::max(1L, std::lround((c1 - c0) / spacing));
@@ -426,6 +466,18 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
       }
       mesh.constraints.push_back({PointRole::Junction, curve});
       ++stats.junctionNodes;
+      continue;
+    }
+    if (nodes[j].kind == OuterNode::Kind::Bridge) {
+      const std::size_t count = target.points.size();
+      const long pieces =
+          bridgePieces(target.points[segment], target.points[(segment + 1) % count], spacing);
+      b[j] = static_cast<std::uint32_t>(mesh.points.size());
+      mesh.points.push_back(bridgePoint(target.points[segment],
+                                        target.points[(segment + 1) % count], nodes[j].bridgeStep,
+                                        pieces));
+      mesh.constraints.push_back(PointConstraint{});
+      stats.bridgeNodes.push_back(b[j]);
       continue;
     }
     // A node at a vertex of the loop (a corner, a bridge end) takes its exact coordinates, so

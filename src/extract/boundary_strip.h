@@ -20,6 +20,9 @@ struct StripStats {
   std::uint64_t filledQuads = 0;      ///< quads closing gaps inside the dual mesh
   std::uint64_t filledTriangles = 0;  ///< triangles closing gaps inside the dual mesh
   std::uint64_t junctionNodes = 0;    ///< nodes placed where the junction curves prescribe
+  /// The nodes placed inside bridges (Free points on the straight bridge, for the caller to lay
+  /// on the surface; each bridge node is there twice, once per visit, with the same coordinates).
+  std::vector<std::uint32_t> bridgeNodes;
 };
 
 /// Rebuilds the boundary of `mesh` up to the original boundary loops.
@@ -48,7 +51,9 @@ struct StripStats {
 /// A boundary loop of a kept piece that no original loop takes is a gap inside the surface and is
 /// closed by a fan of quads. Where one dual loop takes several original loops (the dual mesh could
 /// not pass between two holes, or a hole and the outer contour), they are joined by bridges at
-/// their closest points, so the strip spans the narrow neck between them.
+/// their closest points, so the strip spans the narrow neck between them; a bridge longer than
+/// 1.5 x `spacing` gets Free nodes along it about `spacing` apart (StripStats::bridgeNodes), the
+/// same on both of its visits, so that the weld makes them points inside the surface.
 /// Throws std::runtime_error naming the loop (index and a point of it) when an original loop has
 /// no dual loop to join.
 StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& loopCurves,

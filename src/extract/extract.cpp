@@ -1,6 +1,9 @@
 // extractQuadMesh: the dual mesh, feature snapping, the boundary strip (see extract.h).
 #include "voxremesh/extract.h"
 
+#include <openvdb/tools/Interpolation.h>
+
+#include <cmath>
 #include <stdexcept>
 
 #include "extract/boundary_strip.h"
@@ -13,8 +16,26 @@ namespace voxremesh {
 
 namespace {
 
+/// How strongly a role binds a point, for merging coincident points: Junction, Corner, a curve,
+/// Free.
+int constraintStrength(PointRole role) {
+  switch (role) {
+    case PointRole::Junction:
+      return 3;
+    case PointRole::Corner:
+      return 2;
+    case PointRole::Feature:
+    case PointRole::Boundary:
+      return 1;
+    case PointRole::Free:
+      return 0;
+  }
+  return 0;
+}
+
 /// Merges points with identical coordinates (dual vertices snapped onto one feature point, the
-/// ends of a bridge in the boundary strip), keeping the first; a quad that loses a corner becomes
+/// ends of a bridge in the boundary strip), keeping the first with the strongest constraint
+/// among them; a quad that loses a corner becomes
 /// a triangle, faces with fewer than three distinct corners are dropped. Returns the number of
 /// faces dropped.
 std::uint64_t weldCoincidentPoints(QuadMesh& mesh) {
@@ -26,6 +47,13 @@ std::uint64_t weldCoincidentPoints(QuadMesh& mesh) {
   for (std::size_t k = 0; k < order.size(); ++k) {
     const bool same = k > 0 && mesh.points[order[k]] == mesh.points[order[k - 1]];
     representative[order[k]] = same ? representative[order[k - 1]] : order[k];
+    // The point that stays keeps the strongest constraint of the merged ones: a Junction point
+    // must stay one (the seam with the other sheet or part is made of them), a Corner stays fixed.
+    const CornerIndex kept = representative[order[k]];
+    if (same && !mesh.constraints.empty() &&
+        constraintStrength(mesh.constraints[order[k]].role) >
+            constraintStrength(mesh.constraints[kept].role))
+      mesh.constraints[kept] = mesh.constraints[order[k]];
   }
   std::uint64_t dropped = 0;
   std::vector<std::array<CornerIndex, 4>> faces;
@@ -49,6 +77,30 @@ std::uint64_t weldCoincidentPoints(QuadMesh& mesh) {
   }
   mesh.faces = std::move(faces);
   return dropped;
+}
+
+/// Moves p onto the zero level of the signed distance by Newton steps along its gradient (central
+/// differences of the trilinear interpolant), where that converges within a voxel of p; else p
+/// stays. For the bridge nodes of the boundary strip, which lie on a straight chord across a neck.
+void projectOnLevelSet(const openvdb::FloatGrid& sdf, std::array<double, 3>& p) {
+  const openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(sdf);
+  const double voxel = sdf.voxelSize()[0], h = 0.5 * voxel;
+  const openvdb::Vec3d start(p[0], p[1], p[2]);
+  openvdb::Vec3d x = start;
+  double value = sampler.wsSample(x);
+  for (int step = 0; step < 6 && std::abs(value) > 1e-6 * voxel; ++step) {
+    openvdb::Vec3d gradient;
+    for (int axis = 0; axis < 3; ++axis) {
+      openvdb::Vec3d d(0.0);
+      d[axis] = h;
+      gradient[axis] = (sampler.wsSample(x + d) - sampler.wsSample(x - d)) / (2.0 * h);
+    }
+    const double length2 = gradient.lengthSqr();
+    if (!(length2 > 1e-12)) return;
+    x -= gradient * (value / length2);
+    value = sampler.wsSample(x);
+  }
+  if (std::abs(value) <= 0.05 * voxel && (x - start).length() <= voxel) p = {x[0], x[1], x[2]};
 }
 
 /// The dual mesh stops within about two voxels of a boundary loop (cells touching the loop or an
@@ -114,6 +166,9 @@ QuadMesh extractQuadMesh(const Volume& volume, const ExtractSettings& settings,
     counts.stripQuads = strip.quads;
     counts.stripTriangles = strip.triangles;
     counts.junctionNodes = strip.junctionNodes;
+    counts.bridgeNodes = strip.bridgeNodes.size() / 2;  // each visited twice, welded into one
+    for (const std::uint32_t node : strip.bridgeNodes)
+      projectOnLevelSet(*grids.sdf, mesh.points[node]);
   }
   weldCoincidentPoints(mesh);
   eraseUnusedPoints(mesh);

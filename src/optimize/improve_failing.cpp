@@ -136,9 +136,28 @@ std::vector<std::vector<CornerIndex>> independentClasses(const QuadMesh& mesh,
   return classes;
 }
 
+/// Per curve, the positions of the fixed points (Corners, Junction points) that lie on it.
+std::vector<std::vector<Vec3>> fixedPointsOnCurves(const QuadMesh& mesh) {
+  std::vector<std::vector<Vec3>> result(mesh.curves.size());
+  for (CornerIndex v = 0; v < mesh.points.size(); ++v) {
+    if (opt::roleOf(mesh, v) != PointRole::Corner) continue;
+    const Vec3& p = mesh.points[v];
+    const double tolerance = 1e-9 * (1.0 + norm(p));
+    for (std::size_t c = 0; c < mesh.curves.size(); ++c)
+      if (distance(p, closestPointOnPolyline(mesh.curves[c].points, mesh.curves[c].closed, p)) <=
+          tolerance)
+        result[c].push_back(p);
+  }
+  return result;
+}
+
 /// The pattern search of one point (see improveFailingElements). Returns whether it moved.
+/// `fixedOnCurve` (fixedPointsOnCurves): a curve point never goes within a small distance of a
+/// fixed point of its curve (moving along a curve past a sharp turn or the end of a line, the
+/// closest curve point is the vertex there, where a Corner may sit: the two would coincide).
 bool improvePoint(QuadMesh& mesh, const opt::Topology& t, const ReferenceSurface& original,
-                  const QualitySettings& settings, CornerIndex v) {
+                  const QualitySettings& settings,
+                  const std::vector<std::vector<Vec3>>& fixedOnCurve, CornerIndex v) {
   const Vec3 start = mesh.points[v];
   const bool free = opt::roleOf(mesh, v) == PointRole::Free;
   Vec3 normal;
@@ -164,6 +183,13 @@ bool improvePoint(QuadMesh& mesh, const opt::Topology& t, const ReferenceSurface
     hint = hit.face;
     return hit.point;
   };
+  const std::vector<Vec3> none;
+  const std::vector<Vec3>& fixed = free ? none : fixedOnCurve[mesh.constraints[v].curve];
+  auto onFixedPoint = [&](const Vec3& q) {
+    for (const Vec3& c : fixed)
+      if (distance(q, c) < 0.05 * edge) return true;
+    return false;
+  };
   Score best = scoreAround(mesh, t, v, settings);
   if (best.failures == 0 && best.penalty == 0.0) return false;
   Vec3 position = start;
@@ -173,6 +199,7 @@ bool improvePoint(QuadMesh& mesh, const opt::Topology& t, const ReferenceSurface
       improved = false;
       for (const Vec3& direction : directions) {
         mesh.points[v] = place(position + direction * step);
+        if (onFixedPoint(mesh.points[v])) continue;
         const Score score = scoreAround(mesh, t, v, settings);
         if (score.betterThan(best)) {
           best = score;
@@ -199,6 +226,7 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
   checkQualitySettings(settings);
   opt::checkMesh(mesh);
   const opt::Topology topology = opt::buildTopology(mesh);
+  const std::vector<std::vector<Vec3>> fixedOnCurve = fixedPointsOnCurves(mesh);
   std::size_t moved = 0;
   std::vector<std::uint8_t> movedNow(mesh.points.size(), 0);
   for (int sweep = 0; sweep < sweeps; ++sweep) {
@@ -209,12 +237,13 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
         independentClasses(mesh, topology, pointsOfFailingFaces(mesh, topology, settings));
     std::size_t movedThisSweep = 0;
     for (const std::vector<CornerIndex>& points : classes) {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 8),
-                        [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i < r.end(); ++i)
-                            movedNow[points[i]] =
-                                improvePoint(mesh, topology, original, settings, points[i]) ? 1 : 0;
-                        });
+      tbb::parallel_for(
+          tbb::blocked_range<std::size_t>(0, points.size(), 8),
+          [&](const tbb::blocked_range<std::size_t>& r) {
+            for (std::size_t i = r.begin(); i < r.end(); ++i)
+              movedNow[points[i]] =
+                  improvePoint(mesh, topology, original, settings, fixedOnCurve, points[i]) ? 1 : 0;
+          });
       for (const CornerIndex v : points) movedThisSweep += movedNow[v];
     }
     moved += movedThisSweep;
