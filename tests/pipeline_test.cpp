@@ -65,6 +65,7 @@ TEST(Pipeline, PartVolumesUseThePlannedSize) {
       readDeck(std::filesystem::path(VOXREMESH_SOURCE_DIR) / "tools" / "samples" / "hat_rail.k");
   RemeshSettings settings;
   settings.targetSize = 8;
+  settings.sheets.featureAngleDeg = 30.0;  // the rail's bends turn by 30 to 40 degrees an edge
   const std::vector<PartPlan> plans = planRemesh(model, settings);
   ASSERT_FALSE(plans.empty());
   const std::vector<SheetVolume> volumes = partVolumes(model, plans[0], settings);

@@ -34,7 +34,7 @@ struct RemeshSettings {
   double targetSize = 0.0;
   /// The parts to remesh; empty (the default) means every part with shells.
   std::vector<Id> parts;
-  /// Feature and corner angles (sheets.h defaults: 30 degrees).
+  /// Feature and corner angles (sheets.h defaults: 45 and 30 degrees).
   SheetSettings sheets;
   /// Band, invalid angle, tie tolerance and memory limit of the volumes (volume.h defaults). The
   /// voxel size rule and size are set per part from the target size.

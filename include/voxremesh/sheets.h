@@ -99,9 +99,14 @@ struct Sheet {
 
 /// Thresholds for feature detection.
 struct SheetSettings {
-  double featureAngleDeg = 30.0;  ///< an edge is a feature when its dihedral angle exceeds this
-  double cornerAngleDeg = 30.0;   ///< a boundary or feature-line point is a corner when the curve
-                                  ///< turns by more than this there
+  /// An edge is a feature when its dihedral angle exceeds this. 45 degrees: a sharp edge stays
+  /// sharp, while a bend meshed with two or more rows (each edge near 30 to 45 degrees) is left to
+  /// the projection on the original surface; feature lines there break into short pieces whose
+  /// ends are fixed points (on the bracket at 4.5 mm: 4.4 % of the elements failing with 30,
+  /// 2.1 % with 45; the wheel 9.0 % and 8.0 %).
+  double featureAngleDeg = 45.0;
+  double cornerAngleDeg = 30.0;  ///< a boundary or feature-line point is a corner when the curve
+                                 ///< turns by more than this there
 };
 
 /// Splits the shells of one part into sheets and finds their curves (see the definitions at the

@@ -30,7 +30,7 @@ namespace {
 struct JobSettings {
   std::optional<double> size, voxel;
   Id part = 0;
-  double band = 3.0, featureAngle = 30.0, invalidAngle = 60.0;
+  double band = 3.0, featureAngle = 45.0, invalidAngle = 60.0;
   std::optional<DeckFormat> format;
 };
 

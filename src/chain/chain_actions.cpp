@@ -223,7 +223,7 @@ const std::vector<ActionDef> kActions = {
       {"voxel", OptionType::Number, "", "voxel size instead of size="},
       {"part", OptionType::Integer, "", "the part (may be left out for a one-part deck)"},
       {"band", OptionType::Number, "3", "narrow band half width in voxels"},
-      {"feature", OptionType::Number, "30", "feature angle in degrees"},
+      {"feature", OptionType::Number, "45", "feature angle in degrees"},
       {"invalid", OptionType::Number, "60", "invalid angle at free boundaries in degrees"}},
      runVoxelize,
      ""},

@@ -40,7 +40,7 @@ const char* const kHelp =
     "  -o OUT                 the deck to write (required)\n"
     "  --size H               target element size (default: per part, its median edge length)\n"
     "  --parts P1,P2,...      the parts to remesh (default: all parts with shells)\n"
-    "  --feature-angle DEG    edges turning more than DEG are feature lines (default 30)\n"
+    "  --feature-angle DEG    edges turning more than DEG are feature lines (default 45)\n"
     "  --threads N            threads (default: all cores)\n"
     "  --report REPORT.json   per part counts and times, every node reference remapped\n"
     "  --vtu QUALITY.vtu      the remeshed elements with every quality metric, a failure bit\n"

@@ -40,7 +40,7 @@ const char* const kHelp =
     "                        (neither: the mean element edge length of the part)\n"
     "  --band N              narrow band half width in voxels, 1..64 (default 3)\n"
     "  --feature-angle DEG   edges where the face normals turn by more than DEG degrees are\n"
-    "                        feature lines (0 = flat; default 30)\n"
+    "                        feature lines (0 = flat; default 45)\n"
     "  --invalid-angle DEG   a voxel whose closest point is on a free boundary is invalid when\n"
     "                        its distance vector leans more than DEG degrees away from the face\n"
     "                        normal, 0..90 (default 60)\n"
