@@ -139,14 +139,28 @@ std::vector<std::vector<CornerIndex>> independentClasses(const QuadMesh& mesh,
 /// Per curve, the positions of the fixed points (Corners, Junction points) that lie on it.
 std::vector<std::vector<Vec3>> fixedPointsOnCurves(const QuadMesh& mesh) {
   std::vector<std::vector<Vec3>> result(mesh.curves.size());
+  std::vector<std::array<Vec3, 2>> boxes(mesh.curves.size());  // lower and upper corner
+  for (std::size_t c = 0; c < mesh.curves.size(); ++c) {
+    if (mesh.curves[c].points.empty()) continue;
+    boxes[c] = {mesh.curves[c].points.front(), mesh.curves[c].points.front()};
+    for (const Vec3& q : mesh.curves[c].points)
+      for (std::size_t k = 0; k < 3; ++k) {
+        boxes[c][0][k] = std::min(boxes[c][0][k], q[k]);
+        boxes[c][1][k] = std::max(boxes[c][1][k], q[k]);
+      }
+  }
   for (CornerIndex v = 0; v < mesh.points.size(); ++v) {
     if (opt::roleOf(mesh, v) != PointRole::Corner) continue;
     const Vec3& p = mesh.points[v];
     const double tolerance = 1e-9 * (1.0 + norm(p));
-    for (std::size_t c = 0; c < mesh.curves.size(); ++c)
-      if (distance(p, closestPointOnPolyline(mesh.curves[c].points, mesh.curves[c].closed, p)) <=
-          tolerance)
+    for (std::size_t c = 0; c < mesh.curves.size(); ++c) {
+      bool inBox = !mesh.curves[c].points.empty();
+      for (std::size_t k = 0; k < 3; ++k)
+        inBox = inBox && p[k] >= boxes[c][0][k] - tolerance && p[k] <= boxes[c][1][k] + tolerance;
+      if (inBox && distance(p, closestPointOnPolyline(mesh.curves[c].points, mesh.curves[c].closed,
+                                                      p)) <= tolerance)
         result[c].push_back(p);
+    }
   }
   return result;
 }
