@@ -176,13 +176,14 @@ TargetLoop joinLoops(const QuadMesh& mesh, const std::vector<std::uint32_t>& cur
 
 /// A node of the strip's outer side: its arc length on the loop (relative to the strip's base),
 /// what prescribes it, for a junction node its index in JunctionStretches::nodes, and for a node
-/// inside a bridge its step along the bridge (see bridgePoint).
+/// inside a bridge its step and the bridge's number of pieces (see bridgePoint).
 struct OuterNode {
   enum class Kind : std::uint8_t { Plain, Corner, Junction, Bridge };
   double param = 0.0;
   Kind kind = Kind::Plain;
   std::size_t junctionNode = std::numeric_limits<std::size_t>::max();
   long bridgeStep = 0;
+  long bridgePieces = 0;
 };
 
 /// The number of pieces a bridge from p to q is cut into: about `spacing` long each. The same
@@ -399,8 +400,8 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
           target.points[segment], target.points[(segment + 1) % target.points.size()], spacing);
       const double c0 = anchors[j].param, c1 = gapEnd(anchors, j);
       for (long q = 1; q < pieces; ++q)
-        nodes.push_back(
-            {wrap(c0 + (c1 - c0) * double(q) / double(pieces)), OuterNode::Kind::Bridge, kNone, q});
+        nodes.push_back({wrap(c0 + (c1 - c0) * double(q) / double(pieces)), OuterNode::Kind::Bridge,
+                         kNone, q, pieces});
       continue;
     }
     if (!splittable(anchors, j)) continue;
@@ -469,13 +470,10 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
       continue;
     }
     if (nodes[j].kind == OuterNode::Kind::Bridge) {
-      const std::size_t count = target.points.size();
-      const long pieces =
-          bridgePieces(target.points[segment], target.points[(segment + 1) % count], spacing);
       b[j] = static_cast<std::uint32_t>(mesh.points.size());
       mesh.points.push_back(bridgePoint(target.points[segment],
-                                        target.points[(segment + 1) % count], nodes[j].bridgeStep,
-                                        pieces));
+                                        target.points[(segment + 1) % target.points.size()],
+                                        nodes[j].bridgeStep, nodes[j].bridgePieces));
       mesh.constraints.push_back(PointConstraint{});
       stats.bridgeNodes.push_back(b[j]);
       continue;

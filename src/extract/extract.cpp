@@ -34,10 +34,9 @@ int constraintStrength(PointRole role) {
 }
 
 /// Merges points with identical coordinates (dual vertices snapped onto one feature point, the
-/// ends of a bridge in the boundary strip), keeping the first with the strongest constraint
-/// among them; a quad that loses a corner becomes
-/// a triangle, faces with fewer than three distinct corners are dropped. Returns the number of
-/// faces dropped.
+/// ends of a bridge in the boundary strip) into the first of them, which takes the strongest
+/// constraint among them; a quad that loses a corner becomes a triangle, faces with fewer than
+/// three distinct corners are dropped. Returns the number of faces dropped.
 std::uint64_t weldCoincidentPoints(QuadMesh& mesh) {
   std::vector<CornerIndex> order(mesh.points.size());
   for (CornerIndex i = 0; i < order.size(); ++i) order[i] = i;
