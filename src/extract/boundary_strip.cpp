@@ -119,9 +119,11 @@ struct TargetLoop {
   }
 };
 
-/// Joins the loops into one target loop: each further loop is inserted at the closest pair of
-/// points (a bridge there and back), the bridge ends becoming corners. Corners of the loops are
-/// the points equal to one of `corners`.
+/// Joins the loops into one target loop: starting from the first, the loop nearest to the target
+/// so far is inserted next, at the closest pair of points (a bridge there and back), the bridge
+/// ends becoming corners. Nearest first (Prim's order), every bridge joins neighbours: holes in a
+/// row are joined one to the next, not by a bridge across a hole between them. Corners of the
+/// loops are the points equal to one of `corners`.
 TargetLoop joinLoops(const QuadMesh& mesh, const std::vector<std::uint32_t>& curves,
                      const std::vector<std::array<double, 3>>& corners) {
   TargetLoop target;
@@ -129,24 +131,33 @@ TargetLoop joinLoops(const QuadMesh& mesh, const std::vector<std::uint32_t>& cur
   auto cornerAt = [&](const std::array<double, 3>& p) {
     return std::find(corners.begin(), corners.end(), p) != corners.end();
   };
-  for (std::size_t k = 0; k < curves.size(); ++k) {
-    const std::vector<std::array<double, 3>>& loop = mesh.curves[curves[k]].points;
+  std::vector<char> joined(curves.size(), 0);
+  for (std::size_t step = 0; step < curves.size(); ++step) {
     std::vector<std::array<double, 3>> points;
     std::vector<std::uint32_t> segments;
     std::vector<char> flags;
-    if (k == 0) {
+    if (step == 0) {
+      const std::vector<std::array<double, 3>>& loop = mesh.curves[curves[0]].points;
+      joined[0] = 1;
       points = loop;
-      segments.assign(loop.size(), curves[k]);
+      segments.assign(loop.size(), curves[0]);
       for (const auto& p : loop) flags.push_back(cornerAt(p) ? 1 : 0);
     } else {
-      // The closest pair (i on the target so far, j on this loop).
-      std::size_t bestI = 0, bestJ = 0;
+      // The loop k not joined yet with the closest pair (i on the target so far, j on loop k).
+      std::size_t k = curves.size(), bestI = 0, bestJ = 0;
       double best = std::numeric_limits<double>::infinity();
-      for (std::size_t i = 0; i < target.points.size(); ++i)
-        for (std::size_t j = 0; j < loop.size(); ++j) {
-          const double d = (toVec(target.points[i]) - toVec(loop[j])).lengthSqr();
-          if (d < best) best = d, bestI = i, bestJ = j;
-        }
+      for (std::size_t c = 0; c < curves.size(); ++c) {
+        if (joined[c]) continue;
+        const std::vector<std::array<double, 3>>& candidate = mesh.curves[curves[c]].points;
+        for (std::size_t i = 0; i < target.points.size(); ++i)
+          for (std::size_t j = 0; j < candidate.size(); ++j) {
+            const double d = (toVec(target.points[i]) - toVec(candidate[j])).lengthSqr();
+            if (d < best) best = d, k = c, bestI = i, bestJ = j;
+          }
+      }
+      if (k == curves.size()) break;  // only empty loops left
+      joined[k] = 1;
+      const std::vector<std::array<double, 3>>& loop = mesh.curves[curves[k]].points;
       for (std::size_t i = 0; i <= bestI; ++i) {
         points.push_back(target.points[i]);
         segments.push_back(i == bestI ? kNoCurve : target.segmentCurve[i]);
