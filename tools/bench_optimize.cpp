@@ -9,10 +9,12 @@
 // failing share is given for all criteria of quality.h and for the ones the shared data README
 // measures the input decks with (warping, angles, aspect, scaled Jacobian).
 // Options: --part PID (a deck with several parts), --size H, --threads N (default: all),
-// --repeat N (default 3), --short-edge F (OptimizeSettings::shortEdgeFactor), -o OUT.k (write the
+// --repeat N (default 3), --short-edge F (OptimizeSettings::shortEdgeFactor), --split F
+// (OptimizeSettings::splitLengthFactor), --chord F (splitChordFactor), -o OUT.k (write the
 // optimised mesh).
 //
 // usage: bench_optimize [DECK] [--part PID] [--size H] [--threads N] [--repeat N] [--short-edge F]
+// [--split F] [--chord F]
 // [-o OUT.k]
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
@@ -114,7 +116,7 @@ int run(int argc, char** argv) {
   std::string deck = "../shared/data/bracket.k", out;
   double size = 4.5;
   int threads = 0, repeat = 3;
-  double shortEdge = -1.0;
+  double shortEdge = -1.0, split = -1.0, chord = -1.0;
   Id part = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -129,6 +131,10 @@ int run(int argc, char** argv) {
       part = std::atoll(argv[++i]);
     else if (arg == "--short-edge" && hasValue)
       shortEdge = std::atof(argv[++i]);
+    else if (arg == "--split" && hasValue)
+      split = std::atof(argv[++i]);
+    else if (arg == "--chord" && hasValue)
+      chord = std::atof(argv[++i]);
     else if (arg == "-o" && hasValue)
       out = argv[++i];
     else if (!arg.empty() && arg[0] != '-')
@@ -136,7 +142,7 @@ int run(int argc, char** argv) {
     else {
       std::fprintf(stderr,
                    "usage: bench_optimize [DECK] [--part PID] [--size H] [--threads N] [--repeat "
-                   "N] [--short-edge F] [-o OUT.k]\n");
+                   "N] [--short-edge F] [--split F] [--chord F] [-o OUT.k]\n");
       return 2;
     }
   }
@@ -179,6 +185,8 @@ int run(int argc, char** argv) {
   OptimizeSettings settings;
   settings.quality.targetSize = size;
   if (shortEdge >= 0.0) settings.shortEdgeFactor = shortEdge;
+  if (split >= 0.0) settings.splitLengthFactor = split;
+  if (chord >= 0.0) settings.splitChordFactor = chord;
   OptimizeStats best;
   QuadMesh optimised;
   for (int r = 0; r < repeat; ++r) {
@@ -198,6 +206,7 @@ int run(int argc, char** argv) {
               std::size_t(extractStats.stripTriangles));
   std::printf("  reference surface   %8.4f s\n", surfaceSeconds);
   std::printf("  optimise (best of %d):\n", repeat);
+  std::printf("    edge splitting    %8.4f s  (%zu edges)\n", best.splitSeconds, best.edgesSplit);
   std::printf("    clean-up          %8.4f s  (%zu zero-area, %zu doublets, %zu folded)\n",
               best.cleanupSeconds, best.cleanup.zeroAreaFaces, best.cleanup.valence2Points,
               best.cleanup.foldedCurveFaces);

@@ -143,6 +143,31 @@ std::size_t mergeTrianglePairs(QuadMesh& mesh, const QualitySettings& settings);
 std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& original,
                                    const QualitySettings& settings, int sweeps = 5);
 
+/// Edge splitting: every edge longer than `maxLength` with at least one Free end (an edge between
+/// two constrained points may run along a curve or a junction another mesh shares) and, when
+/// `surface` is not null, whose midpoint lies farther than `chordTolerance` from it than its ends
+/// do on average (the edge cuts across the curved surface; not farther than a quarter of the
+/// edge's length, which is a gap such as a hole, not a bend) gets its midpoint, projected on
+/// `surface` when not null, as a new Free point; the faces around split edges are cut by templates
+/// in their own orientation: a quad with one split edge into a quad and a triangle (the cut whose
+/// worst corner angle is best), with two opposite ones into two quads, with two adjacent ones or
+/// more into quads around a new centre point (and a triangle for three); a triangle into two
+/// triangles, a quad and a triangle, or three quads. Rounds repeat until no edge is longer or
+/// `maxRounds` is reached. Serial and deterministic (new points numbered in the order of the split
+/// edges, then of the faces). Where the dual mesh stops far from the original boundary (a narrow
+/// lobe around a hole), the boundary strip fans wide and its long faces cut across the curved
+/// surface: this brings them back to it.
+/// @param mesh       the mesh (preconditions at the top of the file)
+/// @param maxLength  finite and > 0
+/// @param surface    the original surface (not empty), or null to leave midpoints on their edges
+/// @param chordTolerance  finite and >= 0
+/// @param maxRounds  >= 0
+/// @return the number of edges split
+/// Throws std::invalid_argument for a bad length, tolerance, round count, empty surface or bad
+/// mesh.
+std::size_t splitLongEdges(QuadMesh& mesh, double maxLength, const ReferenceSurface* surface,
+                           double chordTolerance = 0.0, int maxRounds = 3);
+
 /// Settings of optimizeQuadMesh.
 struct OptimizeSettings {
   /// Quality limits: targetSize (0: the median edge length of the input mesh) scales the
@@ -164,6 +189,14 @@ struct OptimizeSettings {
   int improveSweeps = 3;
   /// A face is of zero area below zeroAreaFactor x targetSize^2.
   double zeroAreaFactor = 1e-4;
+  /// Edges longer than splitLengthFactor x targetSize whose midpoint lies farther than
+  /// splitChordFactor x targetSize from the original than their ends do are split first
+  /// (splitLongEdges; splitLengthFactor 0: none, else >= 1). Bracket at 4.5 mm: 1.90 % failing,
+  /// 2.9 % triangles, distance 1.08 (limit 1.125) against 2.13 %, 1.6 %, 1.54 without; at its
+  /// median 2.50 % / 1.15 against 2.61 % / 1.34; sample rail unchanged; wheel 8.24 % against
+  /// 7.91 % (its long edges are mostly in strips bridged across holes).
+  double splitLengthFactor = 1.75;
+  double splitChordFactor = 0.01;
   /// Edges shorter than shortEdgeFactor x targetSize are collapsed in the clean-up. Off by default:
   /// on the bracket 0.2 lowers the failing share from 17.1 % to 14.9 % but raises the triangle
   /// share from 2.5 % to 4.0 % (each collapse turns two quads into triangles).
@@ -180,6 +213,7 @@ struct OptimizeSettings {
 
 /// What optimizeQuadMesh did and how long each step took (wall-clock seconds).
 struct OptimizeStats {
+  double splitSeconds = 0.0;
   double cleanupSeconds = 0.0;
   double rhombicSeconds = 0.0;
   double relaxSeconds = 0.0;
@@ -187,6 +221,7 @@ struct OptimizeStats {
   double improveSeconds = 0.0;
   double warpingSeconds = 0.0;
   double totalSeconds = 0.0;
+  std::size_t edgesSplit = 0;
   CleanupResult cleanup;  ///< summed over both clean-up passes
   std::size_t rhombicCollapsed = 0;
   std::size_t trianglesMerged = 0;  ///< quads made from triangle pairs
@@ -194,9 +229,10 @@ struct OptimizeStats {
   WarpingResult warping;
 };
 
-/// Runs the steps: clean-up, rhombic collapse, clean-up, relaxation, triangle merging,
-/// relaxation, improvement of the failing elements, warping removal, and the improvement once
-/// more (it takes only moves that leave fewer criteria failing around a point, warping included).
+/// Runs the steps: edge splitting, clean-up, rhombic collapse, clean-up, relaxation, triangle
+/// merging, relaxation, improvement of the failing elements, warping removal, and the improvement
+/// once more (it takes only moves that leave fewer criteria failing around a point, warping
+/// included).
 /// @param mesh      the extracted mesh (preconditions at the top of the file)
 /// @param original  the original surface (built from the input shells), not empty
 /// @param settings  see OptimizeSettings

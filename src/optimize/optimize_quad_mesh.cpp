@@ -30,6 +30,13 @@ void checkOptimizeSettings(const OptimizeSettings& s) {
   if (!std::isfinite(s.shortEdgeFactor) || s.shortEdgeFactor < 0.0 || s.shortEdgeFactor > 1.0)
     throw SettingError("optimize: shortEdgeFactor " + std::to_string(s.shortEdgeFactor) +
                        " is outside 0 .. 1");
+  if (!std::isfinite(s.splitLengthFactor) || s.splitLengthFactor < 0.0 ||
+      (s.splitLengthFactor > 0.0 && s.splitLengthFactor < 1.0))
+    throw SettingError("optimize: splitLengthFactor " + std::to_string(s.splitLengthFactor) +
+                       " is neither 0 nor >= 1");
+  if (!std::isfinite(s.splitChordFactor) || s.splitChordFactor < 0.0)
+    throw SettingError("optimize: splitChordFactor " + std::to_string(s.splitChordFactor) +
+                       " is not finite and >= 0");
   if (!(s.warpingMoveFactor > 0.0))
     throw SettingError("optimize: warpingMoveFactor " + std::to_string(s.warpingMoveFactor) +
                        " is not > 0");
@@ -69,6 +76,12 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
     s.relaxSeconds += secondsSince(t);
   };
 
+  if (settings.splitLengthFactor > 0.0 && quality.targetSize > 0.0) {
+    const Clock::time_point t = Clock::now();
+    s.edgesSplit = splitLongEdges(mesh, settings.splitLengthFactor * quality.targetSize, &original,
+                                  settings.splitChordFactor * quality.targetSize);
+    s.splitSeconds = secondsSince(t);
+  }
   cleanUp();
   if (settings.collapseRhombic) {
     const Clock::time_point t = Clock::now();
