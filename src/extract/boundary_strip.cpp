@@ -319,8 +319,15 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
   std::vector<double> t(m), distance(m);
   for (std::size_t i = 0; i < m; ++i)
     t[i] = loop.closestParam(toVec(mesh.points[dualLoop[i]]), distance[i]);
-  const std::size_t start =
-      std::size_t(std::min_element(distance.begin(), distance.end()) - distance.begin());
+  // The zip starts at the dual vertex closest to the loop, but not at one whose closest point is
+  // on a bridge: a bridge is run twice, there and back, and its closest point may be on the wrong
+  // run, which would zip the two rows in opposite directions.
+  std::size_t start = m;
+  for (int pass = 0; pass < 2 && start == m; ++pass)
+    for (std::size_t i = 0; i < m; ++i)
+      if ((pass == 1 || target.segmentCurve[target.segmentAt(loop, t[i])] != kNoCurve) &&
+          (start == m || distance[i] < distance[start]))
+        start = i;
   const double base = t[start];
   std::vector<std::uint32_t> a(m);
   std::vector<double> u(m), dualArc(m + 1, 0.0);
