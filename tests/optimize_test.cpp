@@ -534,6 +534,45 @@ TEST(SplitLongEdges, CutsChordsAcrossACylinderAndKeepsTheMeshSound) {
   EXPECT_THROW(voxremesh::splitLongEdges(fine, 1.0, &surface, -1.0), std::invalid_argument);
 }
 
+TEST(RotateFailingEdges, RecutsAPlantedBadPairBackIntoSquares) {
+  // Two unit squares of a 4 x 4 grid cut along the wrong diagonal of the hexagon they make:
+  // two quads with a straight corner each. Rotating the shared edge restores the squares; points
+  // stay where they are; the mesh stays manifold and oriented.
+  QuadMesh mesh = grid(4);
+  auto id = [](int i, int j) { return static_cast<CornerIndex>(j * 5 + i); };
+  const std::vector<std::array<CornerIndex, 4>> squares = mesh.faces;
+  std::size_t left = 0, right = 0;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (mesh.faces[f][0] == id(1, 1)) left = f;
+    if (mesh.faces[f][0] == id(2, 1)) right = f;
+  }
+  mesh.faces[left] = {id(1, 1), id(2, 1), id(3, 1), id(3, 2)};
+  mesh.faces[right] = {id(3, 2), id(2, 2), id(1, 2), id(1, 1)};
+  voxremesh::QualitySettings settings;
+  settings.targetSize = 1.0;
+  EXPECT_EQ(voxremesh::assessQuality(mesh, settings).failingAny, 2u);
+  const auto points = mesh.points;
+  EXPECT_EQ(voxremesh::rotateFailingEdges(mesh, settings), 1u);
+  EXPECT_EQ(mesh.points, points);
+  EXPECT_EQ(voxremesh::assessQuality(mesh, settings).failingAny, 0u);
+  std::vector<std::array<CornerIndex, 4>> sortedFaces, sortedSquares;
+  for (auto face : mesh.faces) {  // the same squares, each starting at its smallest corner
+    std::rotate(face.begin(), std::min_element(face.begin(), face.end()), face.end());
+    sortedFaces.push_back(face);
+  }
+  for (auto face : squares) {
+    std::rotate(face.begin(), std::min_element(face.begin(), face.end()), face.end());
+    sortedSquares.push_back(face);
+  }
+  std::sort(sortedFaces.begin(), sortedFaces.end());
+  std::sort(sortedSquares.begin(), sortedSquares.end());
+  EXPECT_EQ(sortedFaces, sortedSquares);
+  // Nothing failing: nothing rotates.
+  EXPECT_EQ(voxremesh::rotateFailingEdges(mesh, settings), 0u);
+  settings.targetSize = 0.0;
+  EXPECT_THROW(voxremesh::rotateFailingEdges(mesh, settings), std::invalid_argument);
+}
+
 TEST(RelaxMesh, EqualisesAJitteredCylinderAndStaysOnIt) {
   const int n = 10;
   QuadMesh mesh = cylinder(n, 0.35, 3);

@@ -217,6 +217,8 @@ int run(int argc, char** argv) {
               best.trianglesMerged);
   std::printf("    failing elements  %8.4f s  (%zu moves)\n", best.improveSeconds,
               best.improvedMoves);
+  std::printf("    edge rotation     %8.4f s  (%zu edges)\n", best.rotateSeconds,
+              best.edgesRotated);
   std::printf("    warping removal   %8.4f s  (%d iterations, %zu -> %zu warped)\n",
               best.warpingSeconds, best.warping.iterations, best.warping.warpedBefore,
               best.warping.warpedAfter);

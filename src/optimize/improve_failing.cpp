@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "optimize/face_score.h"
 #include "optimize/mesh_topology.h"
 #include "voxremesh/optimize.h"
 
@@ -18,59 +19,12 @@ using namespace geom;  // NOLINT: the vector operators
 
 namespace {
 
-/// How well the faces around a point do: fewer failed criteria first, then the smaller penalty
-/// (how far the metrics are beyond limits set a margin inside the criteria, see facePenalty).
-struct Score {
-  int failures = 0;
-  double penalty = 0.0;
-  bool betterThan(const Score& other) const {
-    if (failures != other.failures) return failures < other.failures;
-    return penalty < other.penalty - 1e-12;
-  }
-};
-
-/// The square of how far `value` is beyond `soft` (in units of `scale`; 0 when within it).
-double beyondMax(double value, double soft, double scale) {
-  const double d = (value - soft) / scale;
-  return d > 0.0 ? d * d : 0.0;
-}
-double beyondMin(double value, double soft, double scale) {
-  return beyondMax(soft, value, scale);
-}
-
-/// A smooth measure of how close a face comes to failing: each metric is penalised beyond a
-/// soft limit set inside the criterion's limit, so that moves keep a margin; NaN is the worst.
-double facePenalty(const ElementQuality& q, int corners, const QualitySettings& s) {
-  const double jacobian = s.jacobianAtGaussPoints ? q.jacobianRatioGauss : q.jacobianRatio;
-  double p = beyondMax(q.aspectRatio, 0.8 * s.maxAspectRatio, 1.0) +
-             beyondMax(q.skewDeg, 0.8 * s.maxSkewDeg, 10.0) +
-             beyondMin(q.scaledJacobian, s.minScaledJacobian + 0.15, 0.1) +
-             beyondMin(q.minLength, (s.minLengthFactor + 0.15) * s.targetSize, 0.1 * s.targetSize);
-  if (corners == 4) {
-    p += beyondMax(q.warpingDeg, 0.7 * s.maxWarpingDeg, 5.0) +
-         beyondMin(q.minAngleDeg, s.minQuadAngleDeg + 10.0, 10.0) +
-         beyondMax(q.maxAngleDeg, s.maxQuadAngleDeg - 10.0, 10.0) +
-         beyondMin(jacobian, s.minJacobianRatio + 0.1, 0.1) +
-         beyondMax(q.taper, s.maxTaper - 0.15, 0.1);
-  } else {
-    p += beyondMin(q.minAngleDeg, s.minTriaAngleDeg + 5.0, 10.0) +
-         beyondMax(q.maxAngleDeg, s.maxTriaAngleDeg - 10.0, 10.0);
-  }
-  return std::isnan(p) ? 1e30 : p;
-}
-
-Score scoreAround(const QuadMesh& mesh, const opt::Topology& t, CornerIndex v,
-                  const QualitySettings& settings) {
-  Score score;
-  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f) {
-    const auto& face = mesh.faces[*f];
-    const int n = cornerCount(face);
-    std::array<std::array<double, 3>, 4> p{};
-    for (int k = 0; k < n; ++k) p[std::size_t(k)] = mesh.points[face[std::size_t(k)]];
-    const ElementQuality q = elementQuality(p, n);
-    score.failures += __builtin_popcount(elementFailures(q, n, settings));
-    score.penalty += facePenalty(q, n, settings);
-  }
+/// The summed score of the faces around v.
+opt::Score scoreAround(const QuadMesh& mesh, const opt::Topology& t, CornerIndex v,
+                       const QualitySettings& settings) {
+  opt::Score score;
+  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f)
+    score += opt::faceScore(mesh, mesh.faces[*f], settings);
   return score;
 }
 
@@ -204,7 +158,7 @@ bool improvePoint(QuadMesh& mesh, const opt::Topology& t, const ReferenceSurface
       if (distance(q, c) < 0.05 * edge) return true;
     return false;
   };
-  Score best = scoreAround(mesh, t, v, settings);
+  opt::Score best = scoreAround(mesh, t, v, settings);
   if (best.failures == 0 && best.penalty == 0.0) return false;
   Vec3 position = start;
   for (double step = 0.25 * edge; step > 0.01 * edge; step *= 0.5) {
@@ -214,7 +168,7 @@ bool improvePoint(QuadMesh& mesh, const opt::Topology& t, const ReferenceSurface
       for (const Vec3& direction : directions) {
         mesh.points[v] = place(position + direction * step);
         if (onFixedPoint(mesh.points[v])) continue;
-        const Score score = scoreAround(mesh, t, v, settings);
+        const opt::Score score = scoreAround(mesh, t, v, settings);
         if (score.betterThan(best)) {
           best = score;
           position = mesh.points[v];

@@ -106,7 +106,17 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
     s.improvedMoves += improveFailingElements(mesh, original, quality, settings.improveSweeps);
     s.improveSeconds += secondsSince(t);
   };
+  // Edge rotation after each improvement pass, and the improvement again where it rotated any.
+  auto rotateAndImprove = [&] {
+    if (!settings.rotateEdges || quality.targetSize <= 0.0) return;
+    const Clock::time_point t = Clock::now();
+    const std::size_t rotated = rotateFailingEdges(mesh, quality);
+    s.edgesRotated += rotated;
+    s.rotateSeconds += secondsSince(t);
+    if (rotated > 0 && improve) improveFailing();
+  };
   if (improve) improveFailing();
+  rotateAndImprove();
   const Clock::time_point t = Clock::now();
   s.warping = removeWarping(mesh, settings.warpingDeg, settings.warpingIterations,
                             settings.warpingMoveFactor * quality.targetSize);

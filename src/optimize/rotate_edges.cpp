@@ -1,0 +1,140 @@
+// rotateFailingEdges: two faces sharing an edge, one of them failing, are cut again along another
+// diagonal of the polygon they make together where that scores better (optimize.h).
+#include <algorithm>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "optimize/face_score.h"
+#include "optimize/mesh_topology.h"
+#include "voxremesh/optimize.h"
+
+namespace voxremesh {
+
+namespace {
+
+using Face = std::array<CornerIndex, 4>;
+using Edge = std::pair<CornerIndex, CornerIndex>;
+
+Edge edgeKey(CornerIndex a, CornerIndex b) {
+  return {std::min(a, b), std::max(a, b)};
+}
+
+/// The corners of `face` from the one after `from` round to `to`, both included: the face's
+/// part of the polygon two faces make around their shared edge.
+std::vector<CornerIndex> walk(const Face& face, CornerIndex from, CornerIndex to) {
+  const int n = cornerCount(face);
+  int k = 0;
+  while (face[std::size_t(k)] != from) ++k;
+  std::vector<CornerIndex> corners;
+  for (int step = 1; step <= n; ++step) {
+    const CornerIndex v = face[std::size_t((k + step) % n)];
+    corners.push_back(v);
+    if (v == to) break;
+  }
+  return corners;
+}
+
+/// The two faces a polygon of 4, 5 or 6 corners is cut into along the diagonal from corner i to
+/// corner i + 3 (4 corners: i to i + 2): a quad and what is left (a quad, a triangle).
+std::array<Face, 2> cut(const std::vector<CornerIndex>& polygon, std::size_t i) {
+  const std::size_t n = polygon.size();
+  auto at = [&](std::size_t k) { return polygon[(i + k) % n]; };
+  if (n == 4) return {Face{at(0), at(1), at(2), kNoCorner}, Face{at(2), at(3), at(0), kNoCorner}};
+  const Face first{at(0), at(1), at(2), at(3)};
+  if (n == 5) return {first, Face{at(3), at(4), at(0), kNoCorner}};
+  return {first, Face{at(3), at(4), at(5), at(0)}};
+}
+
+}  // namespace
+
+std::size_t rotateFailingEdges(QuadMesh& mesh, const QualitySettings& settings, int maxRounds) {
+  checkQualitySettings(settings);
+  if (!(settings.targetSize > 0.0))
+    throw std::invalid_argument("rotateFailingEdges: the target size must be > 0");
+  if (maxRounds < 0) throw std::invalid_argument("rotateFailingEdges: negative round count");
+  opt::checkMesh(mesh);
+  std::size_t rotated = 0;
+  for (int round = 0; round < maxRounds; ++round) {
+    std::map<Edge, std::vector<std::uint32_t>> edgeFaces;
+    std::vector<std::uint32_t> faceCount(mesh.points.size(), 0);
+    for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
+      const Face& face = mesh.faces[f];
+      const int n = cornerCount(face);
+      for (int k = 0; k < n; ++k) {
+        ++faceCount[face[std::size_t(k)]];
+        edgeFaces[edgeKey(face[std::size_t(k)], face[std::size_t((k + 1) % n)])].push_back(f);
+      }
+    }
+    std::set<Edge> edges;
+    std::vector<std::uint8_t> boundary(mesh.points.size(), 0);
+    for (const auto& [edge, faces] : edgeFaces) {
+      edges.insert(edge);
+      if (faces.size() == 1) boundary[edge.first] = boundary[edge.second] = 1;
+    }
+    auto isFree = [&](CornerIndex v) { return opt::roleOf(mesh, v) == PointRole::Free; };
+    std::vector<std::uint8_t> locked(mesh.faces.size(), 0);
+    std::size_t roundRotated = 0;
+    for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
+      if (locked[f] || opt::faceScore(mesh, mesh.faces[f], settings).failures == 0) continue;
+      const int n = cornerCount(mesh.faces[f]);
+      for (int k = 0; k < n && !locked[f]; ++k) {
+        const CornerIndex a = mesh.faces[f][std::size_t(k)];
+        const CornerIndex b = mesh.faces[f][std::size_t((k + 1) % n)];
+        // Edges between two constrained points may run along a curve: they stay.
+        if (!isFree(a) && !isFree(b)) continue;
+        const auto found = edgeFaces.find(edgeKey(a, b));
+        if (found->second.size() != 2) continue;
+        const std::uint32_t g = found->second[0] == f ? found->second[1] : found->second[0];
+        if (locked[g]) continue;
+        // The polygon round both faces, oriented like f: f from b to a, then g from a to b
+        // (g runs the edge from b to a when both are oriented alike).
+        std::vector<CornerIndex> polygon = walk(mesh.faces[f], a, a);
+        std::rotate(polygon.begin(), std::find(polygon.begin(), polygon.end(), b), polygon.end());
+        if (walk(mesh.faces[g], b, a).size() != 1) continue;  // g runs (a, b) the same way
+        const std::vector<CornerIndex> rest = walk(mesh.faces[g], a, b);
+        polygon.insert(polygon.end(), rest.begin(), rest.end() - 1);
+        std::vector<CornerIndex> sorted = polygon;
+        std::sort(sorted.begin(), sorted.end());
+        if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
+        // Both ends of the edge lose a face: none may be left in fewer than 3 (inside the
+        // surface) or 2 (on the boundary), which would be a doublet or a spike.
+        if (faceCount[a] < (boundary[a] ? 3u : 4u) || faceCount[b] < (boundary[b] ? 3u : 4u))
+          continue;
+        opt::Score best = opt::faceScore(mesh, mesh.faces[f], settings);
+        best += opt::faceScore(mesh, mesh.faces[g], settings);
+        // Every other diagonal (the present one, (a, b), is an edge and skipped): from corner i
+        // to i + 3 (4 corners: i + 2), i < 3 (2) as the others repeat them, any i for 5.
+        std::size_t chosen = polygon.size();
+        for (std::size_t i = 0; i < polygon.size(); ++i) {
+          if (polygon.size() != 5 && i >= polygon.size() / 2) continue;
+          const std::size_t j = (i + (polygon.size() == 4 ? 2 : 3)) % polygon.size();
+          const CornerIndex p = polygon[i], q = polygon[j];
+          if (edges.count(edgeKey(p, q)) || (!isFree(p) && !isFree(q))) continue;
+          const std::array<Face, 2> faces = cut(polygon, i);
+          opt::Score score = opt::faceScore(mesh, faces[0], settings);
+          score += opt::faceScore(mesh, faces[1], settings);
+          if (score.betterThan(best)) best = score, chosen = i;
+        }
+        if (chosen == polygon.size()) continue;
+        const std::array<Face, 2> faces = cut(polygon, chosen);
+        const std::size_t j = (chosen + (polygon.size() == 4 ? 2 : 3)) % polygon.size();
+        edges.erase(edgeKey(a, b));
+        edges.insert(edgeKey(polygon[chosen], polygon[j]));
+        --faceCount[a], --faceCount[b];
+        ++faceCount[polygon[chosen]], ++faceCount[polygon[j]];
+        mesh.faces[f] = faces[0];
+        mesh.faces[g] = faces[1];
+        locked[f] = locked[g] = 1;
+        ++roundRotated;
+      }
+    }
+    if (roundRotated == 0) break;
+    rotated += roundRotated;
+  }
+  return rotated;
+}
+
+}  // namespace voxremesh
