@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "extract/bridge_tree.h"
 #include "extract/polyline_param.h"
 #include "extract/strip_zip.h"
 #include "model/shell_edges.h"
@@ -119,13 +120,17 @@ struct TargetLoop {
   }
 };
 
-/// Joins the loops into one target loop: starting from the first, the loop nearest to the target
-/// so far is inserted next, at the closest pair of points (a bridge there and back), the bridge
-/// ends becoming corners. Nearest first (Prim's order), every bridge joins neighbours: holes in a
-/// row are joined one to the next, not by a bridge across a hole between them. Corners of the
-/// loops are the points equal to one of `corners`.
+/// Joins the loops into one target loop: starting from the first, each further loop is inserted
+/// at a bridge (there and back) from a loop joined already, the bridge ends becoming corners. The
+/// bridges are `pairs` (indices into `curves`, bridgePairs' tree) where they reach a loop not
+/// joined yet, each between the closest points of its two loops (on the joined one, a point whose
+/// next segment runs along it); loops no pair reaches are joined nearest first (Prim's order: the
+/// loop with the closest pair of points to the target so far), so that holes in a row are joined
+/// one to the next, not by a bridge across a hole between them. Corners of the loops are the
+/// points equal to one of `corners`.
 TargetLoop joinLoops(const QuadMesh& mesh, const std::vector<std::uint32_t>& curves,
-                     const std::vector<std::array<double, 3>>& corners) {
+                     const std::vector<std::array<double, 3>>& corners,
+                     const std::vector<std::pair<std::size_t, std::size_t>>& pairs) {
   TargetLoop target;
   std::vector<char> isCorner;
   auto cornerAt = [&](const std::array<double, 3>& p) {
@@ -143,17 +148,27 @@ TargetLoop joinLoops(const QuadMesh& mesh, const std::vector<std::uint32_t>& cur
       segments.assign(loop.size(), curves[0]);
       for (const auto& p : loop) flags.push_back(cornerAt(p) ? 1 : 0);
     } else {
-      // The loop k not joined yet with the closest pair (i on the target so far, j on loop k).
-      std::size_t k = curves.size(), bestI = 0, bestJ = 0;
+      // The loop k to join next, by the first pair that reaches it from a joined loop `from`
+      // (or, when none does, the loop with the closest points to any point of the target so
+      // far), and the closest pair (i on the target, j on loop k).
+      std::size_t k = curves.size(), from = curves.size(), bestI = 0, bestJ = 0;
+      for (const auto& [a, b] : pairs)
+        if (joined[a] != joined[b]) {
+          k = joined[a] ? b : a;
+          from = joined[a] ? a : b;
+          break;
+        }
       double best = std::numeric_limits<double>::infinity();
       for (std::size_t c = 0; c < curves.size(); ++c) {
-        if (joined[c]) continue;
+        if (joined[c] || (k < curves.size() && c != k)) continue;
         const std::vector<std::array<double, 3>>& candidate = mesh.curves[curves[c]].points;
-        for (std::size_t i = 0; i < target.points.size(); ++i)
+        for (std::size_t i = 0; i < target.points.size(); ++i) {
+          if (from < curves.size() && target.segmentCurve[i] != curves[from]) continue;
           for (std::size_t j = 0; j < candidate.size(); ++j) {
             const double d = (toVec(target.points[i]) - toVec(candidate[j])).lengthSqr();
             if (d < best) best = d, k = c, bestI = i, bestJ = j;
           }
+        }
       }
       if (k == curves.size()) break;  // only empty loops left
       joined[k] = 1;
@@ -561,6 +576,7 @@ StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>
   // (within `reach`: a dual loop farther from every original loop is a gap inside the surface).
   std::vector<std::vector<std::size_t>> votes(dualLoops.size(),
                                               std::vector<std::size_t>(loops.size(), 0));
+  std::vector<std::vector<int>> nearest(dualLoops.size());  // per dual vertex: its closest loop
   for (std::size_t d = 0; d < dualLoops.size(); ++d) {
     for (std::uint32_t v : dualLoops[d]) {
       const Vec3d p = toVec(mesh.points[v]);
@@ -573,6 +589,7 @@ StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>
         if (distance < best) best = distance, bestLoop = l;
       }
       if (bestLoop < loops.size()) ++votes[d][bestLoop];
+      nearest[d].push_back(bestLoop < loops.size() ? int(bestLoop) : -1);
     }
   }
   // Each original loop goes to the dual loop with the most votes for it (ties: the first); a dual
@@ -640,8 +657,17 @@ StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>
   }
   for (std::size_t d = 0; d < dualLoops.size(); ++d) {
     if (loopsOfDual[d].empty()) continue;
-    buildStrip(mesh, dualLoops[d], normals, joinLoops(mesh, loopsOfDual[d], corners), junctions,
-               spacing, tolerance, stats);
+    // The dual vertices' closest loops, as indices into loopsOfDual[d] (ascending loop indices).
+    std::vector<int> labels;
+    for (const int l : nearest[d]) {
+      const bool mine = l >= 0 && taken[std::size_t(l)] == d;
+      labels.push_back(mine ? int(std::count_if(taken.begin(), taken.begin() + l,
+                                                [d](std::size_t t) { return t == d; }))
+                            : -1);
+    }
+    const auto pairs = bridgePairs(labels, loopsOfDual[d].size());
+    buildStrip(mesh, dualLoops[d], normals, joinLoops(mesh, loopsOfDual[d], corners, pairs),
+               junctions, spacing, tolerance, stats);
   }
   return stats;
 }
