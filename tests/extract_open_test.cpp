@@ -174,6 +174,21 @@ TEST(ExtractOpen, BracketAtOtherSizesAndItsExactMedian) {
   EXPECT_LT(10 * x.stats.stripTriangles, x.stats.stripQuads);
 }
 
+TEST(ExtractOpen, BracketAtSixMillimetresLaddersItsNecks) {
+  // At 6 mm both holes of the bracket's top lobe lie within two voxels of the outer contour: the
+  // strip's row runs up the contour, over a bridge and back down round the hole. Zipped to the
+  // dual loop alone, that fanned faces over the neck from both sides (6.2 mm from the original);
+  // the ladders across the necks fill them with quads.
+  VOXREMESH_REQUIRE_SHARED_DECK(path, "bracket.k");
+  const FeModel model = readDeck(path);
+  const Extraction x = extractPart(model, 4075, 6.0);
+  expectCleanOpenMesh(x);
+  EXPECT_GE(x.stats.ladderQuads, 4u);
+  QualitySettings quality;
+  quality.targetSize = x.voxel;
+  EXPECT_LT(assessQuality(x.mesh, quality, &x.original).distance->max(), 0.4 * x.voxel);
+}
+
 TEST(ExtractOpen, WheelHolesBridgedInARowZipInStep) {
   // The wheel's rows of holes lie too close together for the dual mesh to pass between them: one
   // dual loop takes three or four holes, joined by bridges one to the next. The zip must run both

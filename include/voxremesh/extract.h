@@ -61,6 +61,9 @@ struct ExtractStats {
   /// Nodes inside the surface along the bridges of the boundary strip (a neck between two loops
   /// the dual mesh did not pass, longer than 1.5 voxels), each laid on the zero level set.
   std::uint64_t bridgeNodes = 0;
+  /// Quads of the ladders the strip lays across such necks, from the bridge outwards while the
+  /// two loops run side by side (part of stripQuads).
+  std::uint64_t ladderQuads = 0;
 };
 
 /// Extracts the quad mesh of a volume (see the top of the file).

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "extract/bridge_tree.h"
+#include "extract/neck_ladder.h"
 #include "extract/polyline_param.h"
 #include "extract/strip_zip.h"
 #include "model/shell_edges.h"
@@ -545,16 +546,55 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
   for (std::size_t i = 0; i < m; ++i)
     centre[i] =
         std::size_t(std::lower_bound(along.begin(), along.end(), u[i] - offset) - along.begin());
+  // Ladders of quads across the necks the bridges span; the zip takes the rest of the row.
+  std::vector<std::size_t> bridgeEnd(n, 0);
+  for (std::size_t j = 0; j < n; ++j) {
+    const std::size_t next = (j + 1) % n;
+    const double end = next == 0 ? nodes[0].param + length : nodes[next].param;
+    if (nodes[j].kind != OuterNode::Kind::Corner ||
+        !onBridge(std::fmod(0.5 * (nodes[j].param + end), length)))
+      continue;
+    std::size_t pieces = 1;
+    while (pieces < n && nodes[(j + pieces) % n].kind == OuterNode::Kind::Bridge) ++pieces;
+    if (nodes[(j + pieces) % n].kind == OuterNode::Kind::Corner) bridgeEnd[j] = pieces;
+  }
+  const NeckLadders ladders = neckLadders(outer, bridgeEnd, inner, innerNormals, spacing);
+  for (const Vec3d& p : ladders.points) {  // Free nodes on the chord, laid on the surface later
+    b.push_back(static_cast<std::uint32_t>(mesh.points.size()));
+    stats.ladderNodes.push_back(b.back());
+    mesh.points.push_back({p[0], p[1], p[2]});
+    mesh.constraints.push_back(PointConstraint{});
+  }
+  std::vector<std::size_t> kept;  // the zip's row: indices into b
+  for (std::size_t j = 0; j < n; ++j) {
+    if (ladders.carved[j]) continue;
+    kept.push_back(j);
+    const auto insert = ladders.rowInserts.find(j);
+    if (insert != ladders.rowInserts.end())
+      kept.insert(kept.end(), insert->second.begin(), insert->second.end());
+  }
+  std::vector<Vec3d> row;
+  for (const std::size_t j : kept) row.push_back(toVec(mesh.points[b[j]]));
+  for (std::size_t& c : centre) {
+    std::size_t r = 0;
+    while (r < kept.size() && (kept[r] >= n || kept[r] < c)) ++r;
+    c = std::min(r, kept.size() - 1);
+  }
   // The search keeps within a band of outer nodes around where each dual vertex lies.
   const std::size_t band = 12 + n / 64;
-  for (const StripFace& face : zipStrip(inner, innerNormals, outer, centre, band)) {
+  for (const StripFace& face : zipStrip(inner, innerNormals, row, centre, band)) {
     std::array<CornerIndex, 4> corners{kNoCorner, kNoCorner, kNoCorner, kNoCorner};
     for (int k = 0; k < face.corners; ++k) {
       const std::uint32_t index = face.index[std::size_t(k)];
-      corners[std::size_t(k)] = face.outer[std::size_t(k)] ? b[index] : a[index];
+      corners[std::size_t(k)] = face.outer[std::size_t(k)] ? b[kept[index]] : a[index];
     }
     mesh.faces.push_back(corners);
     ++(face.corners == 4 ? stats.quads : stats.triangles);
+  }
+  for (const auto& quad : ladders.quads) {
+    mesh.faces.push_back({b[quad[0]], b[quad[1]], b[quad[2]], b[quad[3]]});
+    ++stats.quads;
+    ++stats.ladderQuads;
   }
 }
 

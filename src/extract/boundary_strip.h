@@ -23,6 +23,10 @@ struct StripStats {
   /// The nodes placed inside bridges (Free points on the straight bridge, for the caller to lay
   /// on the surface; each bridge node is there twice, once per visit, with the same coordinates).
   std::vector<std::uint32_t> bridgeNodes;
+  /// Quads of the ladders across keyhole necks (neck_ladder.h; counted in `quads` too), and the
+  /// Free nodes inside their rungs (on the chord, for the caller to lay on the surface).
+  std::uint64_t ladderQuads = 0;
+  std::vector<std::uint32_t> ladderNodes;
 };
 
 /// Rebuilds the boundary of `mesh` up to the original boundary loops.

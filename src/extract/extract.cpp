@@ -166,7 +166,10 @@ QuadMesh extractQuadMesh(const Volume& volume, const ExtractSettings& settings,
     counts.stripTriangles = strip.triangles;
     counts.junctionNodes = strip.junctionNodes;
     counts.bridgeNodes = strip.bridgeNodes.size() / 2;  // each visited twice, welded into one
+    counts.ladderQuads = strip.ladderQuads;
     for (const std::uint32_t node : strip.bridgeNodes)
+      projectOnLevelSet(*grids.sdf, mesh.points[node]);
+    for (const std::uint32_t node : strip.ladderNodes)
       projectOnLevelSet(*grids.sdf, mesh.points[node]);
   }
   weldCoincidentPoints(mesh);
