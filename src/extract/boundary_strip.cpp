@@ -575,8 +575,9 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
   }
   std::vector<Vec3d> row;
   for (const std::size_t j : kept) row.push_back(toVec(mesh.points[b[j]]));
+  // Each dual vertex's centre moves to the first row node at or after it (centre ascends).
+  std::size_t r = 0;
   for (std::size_t& c : centre) {
-    std::size_t r = 0;
     while (r < kept.size() && (kept[r] >= n || kept[r] < c)) ++r;
     c = std::min(r, kept.size() - 1);
   }
