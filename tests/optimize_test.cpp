@@ -573,6 +573,35 @@ TEST(RotateFailingEdges, RecutsAPlantedBadPairBackIntoSquares) {
   EXPECT_THROW(voxremesh::rotateFailingEdges(mesh, settings), std::invalid_argument);
 }
 
+TEST(SplitInvertedQuads, CutsAnArrowheadAtItsReflexCorner) {
+  // An arrowhead (reflex at its fourth corner: a negative corner Jacobian) next to a square; the
+  // arrowhead becomes two triangles turning the same way, the square stays.
+  QuadMesh mesh;
+  mesh.points = {{0, 0, 0}, {2, 1, 0}, {0, 2, 0}, {0.5, 1, 0}, {2, 3, 0}};
+  mesh.faces = {{0, 1, 2, 3}, {2, 1, 4, kNoCorner}};
+  voxremesh::QualitySettings settings;
+  settings.targetSize = 1.0;
+  EXPECT_LT(voxremesh::assessQuality(mesh, settings)
+                .criteria[static_cast<int>(voxremesh::Criterion::JacobianRatio)]
+                .worst,
+            0.0);
+  EXPECT_EQ(voxremesh::splitInvertedQuads(mesh), 1u);
+  ASSERT_EQ(mesh.faces.size(), 3u);
+  for (const auto& face : mesh.faces) {
+    ASSERT_EQ(voxremesh::cornerCount(face), 3);
+    const auto& a = mesh.points[face[0]];
+    const auto& b = mesh.points[face[1]];
+    const auto& c = mesh.points[face[2]];
+    EXPECT_GT((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]), 0.0) << "turns left";
+  }
+  EXPECT_EQ(mesh.faces[2], (std::array<CornerIndex, 4>{2, 1, 4, kNoCorner}));
+  // Convex quads stay.
+  QuadMesh square = grid(2);
+  const auto faces = square.faces;
+  EXPECT_EQ(voxremesh::splitInvertedQuads(square), 0u);
+  EXPECT_EQ(square.faces, faces);
+}
+
 TEST(RelaxMesh, EqualisesAJitteredCylinderAndStaysOnIt) {
   const int n = 10;
   QuadMesh mesh = cylinder(n, 0.35, 3);

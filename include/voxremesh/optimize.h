@@ -183,6 +183,14 @@ std::size_t splitLongEdges(QuadMesh& mesh, double maxLength, const ReferenceSurf
 /// SettingError for bad settings.
 std::size_t rotateFailingEdges(QuadMesh& mesh, const QualitySettings& settings, int maxRounds = 5);
 
+/// Inverted quads: a quad with exactly one reflex corner (det J <= 0 there, with quality.h's
+/// corner Jacobian: a negative Jacobian ratio, which solvers refuse) becomes the two triangles on
+/// either side of the diagonal from that corner, which lies inside the quad; both keep the quad's
+/// orientation. Quads folded at more than one corner are left as they are. Serial, deterministic.
+/// @return the number of quads split
+/// Throws std::invalid_argument for a bad mesh.
+std::size_t splitInvertedQuads(QuadMesh& mesh);
+
 /// Settings of optimizeQuadMesh.
 struct OptimizeSettings {
   /// Quality limits: targetSize (0: the median edge length of the input mesh) scales the
@@ -246,13 +254,15 @@ struct OptimizeStats {
   std::size_t trianglesMerged = 0;  ///< quads made from triangle pairs
   std::size_t improvedMoves = 0;    ///< points moved by improveFailingElements
   std::size_t edgesRotated = 0;
+  std::size_t invertedSplit = 0;  ///< quads with a reflex corner split into two triangles (last)
   WarpingResult warping;
 };
 
 /// Runs the steps: edge splitting, clean-up, rhombic collapse, clean-up, relaxation, triangle
-/// merging, relaxation, improvement of the failing elements, warping removal, and the improvement
-/// once more (it takes only moves that leave fewer criteria failing around a point, warping
-/// included).
+/// merging, relaxation, improvement of the failing elements, edge rotation (and the improvement
+/// again where any rotated), warping removal, the improvement once more (it takes only moves that
+/// leave fewer criteria failing around a point, warping included), and last the split of quads
+/// still inverted (splitInvertedQuads).
 /// @param mesh      the extracted mesh (preconditions at the top of the file)
 /// @param original  the original surface (built from the input shells), not empty
 /// @param settings  see OptimizeSettings

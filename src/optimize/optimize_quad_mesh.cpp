@@ -122,6 +122,7 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
                             settings.warpingMoveFactor * quality.targetSize);
   s.warpingSeconds = secondsSince(t);
   if (improve) improveFailing();
+  s.invertedSplit = splitInvertedQuads(mesh);
   s.totalSeconds = secondsSince(start);
   if (stats) *stats = s;
 }
