@@ -2,6 +2,7 @@
 #include "extract/neck_ladder.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace voxremesh::extract {
 
@@ -9,8 +10,8 @@ using openvdb::math::Vec3d;
 
 namespace {
 
-/// How far a rung's length may be from a whole number of node spacings, the longest rung of one
-/// piece, and how close a dual vertex may come to a rung, in node spacings.
+/// How far a rung's length may be from its number of pieces x the node spacing, and how close a
+/// dual vertex may come to a rung, in node spacings; the most rungs a ladder grows.
 constexpr double kRungSlack = 0.6;
 constexpr double kDualClearance = 0.3;
 constexpr std::size_t kMostRungs = 64;
