@@ -1,7 +1,6 @@
 // rotateFailingEdges: two faces sharing an edge, one of them failing, are cut again along another
 // diagonal of the polygon they make together where that scores better (optimize.h).
 #include <algorithm>
-#include <map>
 #include <set>
 #include <stdexcept>
 #include <utility>
@@ -58,22 +57,16 @@ std::size_t rotateFailingEdges(QuadMesh& mesh, const QualitySettings& settings, 
   opt::checkMesh(mesh);
   std::size_t rotated = 0;
   for (int round = 0; round < maxRounds; ++round) {
-    std::map<Edge, std::vector<std::uint32_t>> edgeFaces;
-    std::vector<std::uint32_t> faceCount(mesh.points.size(), 0);
-    for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
-      const Face& face = mesh.faces[f];
-      const int n = cornerCount(face);
-      for (int k = 0; k < n; ++k) {
-        ++faceCount[face[std::size_t(k)]];
-        edgeFaces[edgeKey(face[std::size_t(k)], face[std::size_t((k + 1) % n)])].push_back(f);
-      }
-    }
-    std::set<Edge> edges;
-    std::vector<std::uint8_t> boundary(mesh.points.size(), 0);
-    for (const auto& [edge, faces] : edgeFaces) {
-      edges.insert(edge);
-      if (faces.size() == 1) boundary[edge.first] = boundary[edge.second] = 1;
-    }
+    // The connectivity at the start of the round; faces changed in the round are locked, and
+    // the edges it removes or makes are tracked apart.
+    const opt::Topology topology = opt::buildTopology(mesh);
+    std::vector<std::size_t> faceCount(mesh.points.size());
+    for (CornerIndex v = 0; v < mesh.points.size(); ++v) faceCount[v] = topology.faceCount(v);
+    std::set<Edge> removed, added;
+    auto isEdge = [&](CornerIndex p, CornerIndex q) {
+      const Edge key = edgeKey(p, q);
+      return added.count(key) || (topology.edgeFaces(p, q) > 0 && !removed.count(key));
+    };
     auto isFree = [&](CornerIndex v) { return opt::roleOf(mesh, v) == PointRole::Free; };
     std::vector<std::uint8_t> locked(mesh.faces.size(), 0);
     std::size_t roundRotated = 0;
@@ -85,10 +78,15 @@ std::size_t rotateFailingEdges(QuadMesh& mesh, const QualitySettings& settings, 
         const CornerIndex b = mesh.faces[f][std::size_t((k + 1) % n)];
         // Edges between two constrained points may run along a curve: they stay.
         if (!isFree(a) && !isFree(b)) continue;
-        const auto found = edgeFaces.find(edgeKey(a, b));
-        if (found->second.size() != 2) continue;
-        const std::uint32_t g = found->second[0] == f ? found->second[1] : found->second[0];
-        if (locked[g]) continue;
+        if (topology.edgeFaces(a, b) != 2) continue;
+        std::uint32_t g = f;  // the other face of the edge
+        for (const std::uint32_t* h = topology.facesBegin(a); h != topology.facesEnd(a); ++h) {
+          const Face& other = mesh.faces[*h];
+          if (*h != f && std::find(other.begin(), other.begin() + cornerCount(other), b) !=
+                             other.begin() + cornerCount(other))
+            g = *h;
+        }
+        if (g == f || locked[g]) continue;
         // The polygon round both faces, oriented like f: f from b to a, then g from a to b
         // (g runs the edge from b to a when both are oriented alike).
         std::vector<CornerIndex> polygon = walk(mesh.faces[f], a, a);
@@ -101,7 +99,8 @@ std::size_t rotateFailingEdges(QuadMesh& mesh, const QualitySettings& settings, 
         if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
         // Both ends of the edge lose a face: none may be left in fewer than 3 (inside the
         // surface) or 2 (on the boundary), which would be a doublet or a spike.
-        if (faceCount[a] < (boundary[a] ? 3u : 4u) || faceCount[b] < (boundary[b] ? 3u : 4u))
+        if (faceCount[a] < (topology.boundary[a] ? 3u : 4u) ||
+            faceCount[b] < (topology.boundary[b] ? 3u : 4u))
           continue;
         opt::Score best = opt::faceScore(mesh, mesh.faces[f], settings);
         best += opt::faceScore(mesh, mesh.faces[g], settings);
@@ -112,7 +111,7 @@ std::size_t rotateFailingEdges(QuadMesh& mesh, const QualitySettings& settings, 
           if (polygon.size() != 5 && i >= polygon.size() / 2) continue;
           const std::size_t j = (i + (polygon.size() == 4 ? 2 : 3)) % polygon.size();
           const CornerIndex p = polygon[i], q = polygon[j];
-          if (edges.count(edgeKey(p, q)) || (!isFree(p) && !isFree(q))) continue;
+          if (isEdge(p, q) || (!isFree(p) && !isFree(q))) continue;
           const std::array<Face, 2> faces = cut(polygon, i);
           opt::Score score = opt::faceScore(mesh, faces[0], settings);
           score += opt::faceScore(mesh, faces[1], settings);
@@ -121,8 +120,8 @@ std::size_t rotateFailingEdges(QuadMesh& mesh, const QualitySettings& settings, 
         if (chosen == polygon.size()) continue;
         const std::array<Face, 2> faces = cut(polygon, chosen);
         const std::size_t j = (chosen + (polygon.size() == 4 ? 2 : 3)) % polygon.size();
-        edges.erase(edgeKey(a, b));
-        edges.insert(edgeKey(polygon[chosen], polygon[j]));
+        removed.insert(edgeKey(a, b));
+        added.insert(edgeKey(polygon[chosen], polygon[j]));
         --faceCount[a], --faceCount[b];
         ++faceCount[polygon[chosen]], ++faceCount[polygon[j]];
         mesh.faces[f] = faces[0];
