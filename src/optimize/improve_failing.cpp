@@ -197,6 +197,20 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
   const std::vector<std::vector<Vec3>> fixedOnCurve = fixedPointsOnCurves(mesh);
   std::size_t moved = 0;
   std::vector<std::uint8_t> movedNow(mesh.points.size(), 0);
+  // A point's search depends only on the positions of the points of its faces: a point whose
+  // search left it in place is not searched again until one of those has moved. Stamps count
+  // the colour classes processed (0: never); a point searched in vain at stamp s is skipped while
+  // every point of its faces last moved before s. The classes are formed before the skipping, so
+  // the order of the searches, and with it the result, is the same as without it.
+  std::vector<std::uint32_t> movedAt(mesh.points.size(), 0), stayedAt(mesh.points.size(), 0);
+  std::uint32_t stamp = 0;
+  auto unchangedSinceSearch = [&](CornerIndex v) {
+    if (stayedAt[v] == 0) return false;
+    for (const std::uint32_t* f = topology.facesBegin(v); f != topology.facesEnd(v); ++f)
+      for (int k = 0; k < cornerCount(mesh.faces[*f]); ++k)
+        if (movedAt[mesh.faces[*f][std::size_t(k)]] >= stayedAt[v]) return false;
+    return true;
+  };
   for (int sweep = 0; sweep < sweeps; ++sweep) {
     // Points that share no face do not see each other's moves: the points of one colour class
     // are improved in parallel, the classes one after another, so the result does not depend
@@ -204,7 +218,10 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
     const std::vector<std::vector<CornerIndex>> classes =
         independentClasses(mesh, topology, pointsOfFailingFaces(mesh, topology, settings));
     std::size_t movedThisSweep = 0;
-    for (const std::vector<CornerIndex>& points : classes) {
+    for (std::vector<CornerIndex> points : classes) {
+      points.erase(std::remove_if(points.begin(), points.end(), unchangedSinceSearch),
+                   points.end());
+      ++stamp;
       tbb::parallel_for(
           tbb::blocked_range<std::size_t>(0, points.size(), 8),
           [&](const tbb::blocked_range<std::size_t>& r) {
@@ -212,7 +229,11 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
               movedNow[points[i]] =
                   improvePoint(mesh, topology, original, settings, fixedOnCurve, points[i]) ? 1 : 0;
           });
-      for (const CornerIndex v : points) movedThisSweep += movedNow[v];
+      for (const CornerIndex v : points) {
+        movedThisSweep += movedNow[v];
+        movedAt[v] = movedNow[v] ? stamp : movedAt[v];
+        stayedAt[v] = movedNow[v] ? 0 : stamp;
+      }
     }
     moved += movedThisSweep;
     if (movedThisSweep == 0) break;
