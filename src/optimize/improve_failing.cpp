@@ -28,6 +28,23 @@ opt::Score scoreAround(const QuadMesh& mesh, const opt::Topology& t, CornerIndex
   return score;
 }
 
+/// Whether the summed score of the faces around v is better than `best` (Score::betterThan),
+/// summed in the order of scoreAround and given up as soon as the part summed cannot be better
+/// (failures and penalties are never negative). The summed score goes to `score` when better.
+bool scoresBetterAround(const QuadMesh& mesh, const opt::Topology& t, CornerIndex v,
+                        const QualitySettings& settings, const opt::Score& best,
+                        opt::Score& score) {
+  opt::Score sum;
+  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f) {
+    sum += opt::faceScore(mesh, mesh.faces[*f], settings);
+    if (sum.failures > best.failures ||
+        (sum.failures == best.failures && !sum.betterThan(best)))
+      return false;
+  }
+  score = sum;
+  return true;
+}
+
 /// A unit normal of the surface at v (the sum of its faces' normals) and the mean length of its
 /// edges.
 void localFrame(const QuadMesh& mesh, const opt::Topology& t, CornerIndex v, Vec3& normal,
@@ -168,8 +185,8 @@ bool improvePoint(QuadMesh& mesh, const opt::Topology& t, const ReferenceSurface
       for (const Vec3& direction : directions) {
         mesh.points[v] = place(position + direction * step);
         if (onFixedPoint(mesh.points[v])) continue;
-        const opt::Score score = scoreAround(mesh, t, v, settings);
-        if (score.betterThan(best)) {
+        opt::Score score;
+        if (scoresBetterAround(mesh, t, v, settings, best, score)) {
           best = score;
           position = mesh.points[v];
           improved = true;
