@@ -37,8 +37,7 @@ bool scoresBetterAround(const QuadMesh& mesh, const opt::Topology& t, CornerInde
   opt::Score sum;
   for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f) {
     sum += opt::faceScore(mesh, mesh.faces[*f], settings);
-    if (sum.failures > best.failures ||
-        (sum.failures == best.failures && !sum.betterThan(best)))
+    if (sum.failures > best.failures || (sum.failures == best.failures && !sum.betterThan(best)))
       return false;
   }
   score = sum;
