@@ -174,6 +174,20 @@ TEST(ExtractOpen, BracketAtOtherSizesAndItsExactMedian) {
   EXPECT_LT(10 * x.stats.stripTriangles, x.stats.stripQuads);
 }
 
+TEST(ExtractOpen, BracketAtSevenMillimetresHasNoEdgeOfFourFaces) {
+  // At 7 mm two dual vertices lie twice on the dual boundary (two parts of the dual mesh touch at
+  // a corner) and both passes were zipped to the same outer node: the edge between them had four
+  // faces. The strip is built again without the smaller fans at such vertices.
+  VOXREMESH_REQUIRE_SHARED_DECK(path, "bracket.k");
+  const FeModel model = readDeck(path);
+  const Extraction x = extractPart(model, 4075, 7.0);
+  const test::MeshTopology topology = test::meshTopology(x.mesh);
+  EXPECT_EQ(topology.nonManifoldEdges, 0u);
+  EXPECT_EQ(topology.inconsistentEdges, 0u);
+  EXPECT_EQ(topology.boundaryLoops, 12u);
+  EXPECT_GT(x.stats.pinchedFaces, 0u);
+}
+
 TEST(ExtractOpen, BracketAtSixMillimetresLaddersItsNecks) {
   // At 6 mm both holes of the bracket's top lobe lie within two voxels of the outer contour: the
   // strip's row runs up the contour, over a bridge and back down round the hole. Zipped to the

@@ -64,6 +64,10 @@ struct ExtractStats {
   /// Quads of the ladders the strip lays across such necks, from the bridge outwards while the
   /// two loops run side by side (part of stripQuads).
   std::uint64_t ladderQuads = 0;
+  /// Dual faces removed where a vertex of the dual boundary is passed twice and the strip built
+  /// from both passes gave an edge more than two faces (the smaller fans there; the strip is then
+  /// built again).
+  std::uint64_t pinchedFaces = 0;
 };
 
 /// Extracts the quad mesh of a volume (see the top of the file).

@@ -10,6 +10,7 @@
 
 #include "extract/bridge_tree.h"
 #include "extract/neck_ladder.h"
+#include "extract/pinch_fans.h"
 #include "extract/polyline_param.h"
 #include "extract/strip_zip.h"
 #include "model/shell_edges.h"
@@ -601,11 +602,13 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
 
 }  // namespace
 
-StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& loopCurves,
-                                const std::vector<std::array<double, 3>>& corners,
-                                const JunctionNodes& junctions, double spacing, double tolerance,
-                                double reach) {
-  if (!(spacing > 0.0)) throw std::invalid_argument("rebuildBoundaryStrip: spacing must be > 0");
+namespace {
+
+/// rebuildBoundaryStrip on the dual mesh as it is (pinched vertices included).
+StripStats rebuildStripAsIs(QuadMesh& mesh, const std::vector<std::uint32_t>& loopCurves,
+                            const std::vector<std::array<double, 3>>& corners,
+                            const JunctionNodes& junctions, double spacing, double tolerance,
+                            double reach) {
   StripStats stats;
   if (mesh.constraints.size() != mesh.points.size()) mesh.constraints.resize(mesh.points.size());
   std::vector<PolylineParam> loops;
@@ -710,6 +713,30 @@ StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>
     buildStrip(mesh, dualLoops[d], normals, joinLoops(mesh, loopsOfDual[d], corners, pairs),
                junctions, spacing, tolerance, stats);
   }
+  return stats;
+}
+
+}  // namespace
+
+StripStats rebuildBoundaryStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& loopCurves,
+                                const std::vector<std::array<double, 3>>& corners,
+                                const JunctionNodes& junctions, double spacing, double tolerance,
+                                double reach) {
+  if (!(spacing > 0.0)) throw std::invalid_argument("rebuildBoundaryStrip: spacing must be > 0");
+  // A dual vertex where two parts of the dual mesh touch at a corner lies twice on its boundary;
+  // usually the two passes are zipped to different stretches of the original loops, but where
+  // both reach the same outer node the edge between them gets four faces. Then the strip is
+  // built again on the dual mesh without the smaller fans at the ends of such edges.
+  QuadMesh dual = mesh;
+  StripStats stats =
+      rebuildStripAsIs(mesh, loopCurves, corners, junctions, spacing, tolerance, reach);
+  const std::vector<CornerIndex> ends = endsOfOverfullEdges(mesh);
+  if (ends.empty()) return stats;
+  const std::size_t removed = removePinchedFans(dual, ends);
+  if (removed == 0) return stats;
+  mesh = std::move(dual);
+  stats = rebuildStripAsIs(mesh, loopCurves, corners, junctions, spacing, tolerance, reach);
+  stats.pinchedFaces = removed;
   return stats;
 }
 

@@ -17,6 +17,7 @@ struct StripStats {
   std::uint64_t quads = 0;
   std::uint64_t triangles = 0;
   std::uint64_t removedFaces = 0;     ///< faces of stray dual pieces removed (see below)
+  std::uint64_t pinchedFaces = 0;     ///< faces removed at pinched vertices (pinch_fans.h)
   std::uint64_t filledQuads = 0;      ///< quads closing gaps inside the dual mesh
   std::uint64_t filledTriangles = 0;  ///< triangles closing gaps inside the dual mesh
   std::uint64_t junctionNodes = 0;    ///< nodes placed where the junction curves prescribe

@@ -167,6 +167,7 @@ QuadMesh extractQuadMesh(const Volume& volume, const ExtractSettings& settings,
     counts.junctionNodes = strip.junctionNodes;
     counts.bridgeNodes = strip.bridgeNodes.size() / 2;  // each visited twice, welded into one
     counts.ladderQuads = strip.ladderQuads;
+    counts.pinchedFaces = strip.pinchedFaces;
     for (const std::uint32_t node : strip.bridgeNodes)
       projectOnLevelSet(*grids.sdf, mesh.points[node]);
     for (const std::uint32_t node : strip.ladderNodes)
