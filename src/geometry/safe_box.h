@@ -9,6 +9,10 @@
 #include <cmath>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "geometry/vec3.h"
 
 namespace voxremesh::geom {
@@ -49,16 +53,32 @@ inline Box safeBox(const Box& box) {
   return out;
 }
 
-/// The squared distance from p to the box [lo, hi], summed over the axes in the order of
-/// geom::dot, so that it is at most the computed dot(p - q, p - q) of any q in the box (rounding is
-/// monotonic). NaN coordinates of p count as inside.
+/// The squared distance from p to the box [lo, hi]: per axis d = max(lo - p, p - hi, 0), summed
+/// as (dx^2 + dy^2) + dz^2 in the order of geom::dot, so that it is at most the computed
+/// dot(p - q, p - q) of any q in the box (rounding is monotonic). With SSE2, x and y in one
+/// register (the same values). A NaN coordinate of p may give any value (nothing is pruned while
+/// the best distance is infinite, and a NaN query has no finite distance).
 inline double boxDistance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
+#if defined(__SSE2__)
+  const __m128d pxy = _mm_loadu_pd(p.data());
+  const __m128d below = _mm_sub_pd(_mm_loadu_pd(lo.data()), pxy);
+  const __m128d above = _mm_sub_pd(pxy, _mm_loadu_pd(hi.data()));
+  const __m128d dxy = _mm_max_pd(_mm_max_pd(below, above), _mm_setzero_pd());
+  const __m128d squares = _mm_mul_pd(dxy, dxy);
+  const __m128d pz = _mm_load_sd(&p[2]);
+  const __m128d dz = _mm_max_sd(
+      _mm_max_sd(_mm_sub_sd(_mm_load_sd(&lo[2]), pz), _mm_sub_sd(pz, _mm_load_sd(&hi[2]))),
+      _mm_setzero_pd());
+  const __m128d sum = _mm_add_sd(squares, _mm_unpackhi_pd(squares, squares));
+  return _mm_cvtsd_f64(_mm_add_sd(sum, _mm_mul_sd(dz, dz)));
+#else
   double d2 = 0.0;
   for (int k = 0; k < 3; ++k) {
-    const double d = p[k] < lo[k] ? lo[k] - p[k] : (p[k] > hi[k] ? p[k] - hi[k] : 0.0);
+    const double d = std::max(std::max(lo[k] - p[k], p[k] - hi[k]), 0.0);
     d2 += d * d;
   }
   return d2;
+#endif
 }
 /// boxDistance2 of p and box.
 inline double boxDistance2(const Vec3& p, const Box& box) {
