@@ -87,6 +87,32 @@ TEST(ReferenceSurface, MatchesBruteForce) {
   }
 }
 
+TEST(ReferenceSurface, ExactTiesGoToTheFirstFaceWhateverTheHint) {
+  // Every face twice (the second copy after all the first ones): each triangle has a twin at
+  // exactly the same distance, so the first copy must win every query, with any hint, including
+  // queries on vertices and edges where neighbouring triangles tie as well.
+  QuadMesh mesh = wavyGrid(10);
+  const std::size_t faces = mesh.faces.size();
+  for (std::size_t f = 0; f < faces; ++f) mesh.faces.push_back(mesh.faces[f]);
+  const voxremesh::ReferenceSurface surface(mesh);
+  const voxremesh::ReferenceSurface once(wavyGrid(10));
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> xy(-1.0, 11.0), z(-2.0, 2.0);
+  std::vector<Vec> queries = mesh.points;
+  for (int i = 0; i < 300; ++i) queries.push_back({xy(random), xy(random), z(random)});
+  for (int i = 0; i < 100; ++i) queries.push_back({0.5 * (i % 21), 0.5 * (i / 21), 0.0});
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    const voxremesh::SurfaceHit expected = once.closestPoint(queries[i]);
+    for (const std::uint32_t hint : {std::uint32_t(i % faces), std::uint32_t(faces + i % faces),
+                                     std::uint32_t(2 * faces - 1), std::uint32_t(-1)}) {
+      const voxremesh::SurfaceHit hit = surface.closestPoint(queries[i], hint);
+      EXPECT_EQ(hit.face, expected.face) << "query " << i << " hint " << hint;
+      EXPECT_EQ(hit.point, expected.point) << "query " << i << " hint " << hint;
+      EXPECT_EQ(hit.distance, expected.distance) << "query " << i << " hint " << hint;
+    }
+  }
+}
+
 TEST(ReferenceSurface, PointOnTheSurfaceIsItsOwnClosestPoint) {
   const QuadMesh mesh = wavyGrid(4);
   const voxremesh::ReferenceSurface surface(mesh);

@@ -6,7 +6,9 @@
 // centroids, four triangles a leaf) and the exact point-triangle distance (Ericson, Real-Time
 // Collision Detection 5.1.5). A query's answer depends only on the surface and the query point:
 // on exact distance ties the triangle that comes first in face order wins, so results are the
-// same for any number of threads.
+// same for any number of threads. Boxes (of nodes and of each triangle) are grown by a few units
+// in the last place, so that skipping one farther than the best answer so far never skips the
+// answer, whatever the rounding of the computed closest points.
 #pragma once
 
 #include <array>
@@ -46,7 +48,8 @@ class ReferenceSurface {
 
   /// The same closest point as closestPoint(p), found faster when face `hintFace` of the source
   /// mesh (e.g. the face of the previous answer for a point that moved a little) is close to p:
-  /// its triangles bound the search from the start. Any hint gives the same answer; a hint that
+  /// its triangles bound the search from the start, which then climbs from the hint's leaf to the
+  /// root, searching the other subtree at each step. Any hint gives the same answer; a hint that
   /// is not a face index is ignored.
   SurfaceHit closestPoint(const std::array<double, 3>& p, std::uint32_t hintFace) const;
 
@@ -56,10 +59,16 @@ class ReferenceSurface {
 
  private:
   struct Node {
+    std::array<double, 3> lo{}, hi{};  ///< holds the boxes of its triangles
+    std::uint32_t first = 0;           ///< leaf: first index into leafTris_; inner: the left child
+    std::uint32_t count = 0;           ///< leaf: number of triangles; inner: 0
+    std::uint32_t right = 0;           ///< inner: the right child
+  };
+  /// A triangle in leaf order with its corners and its (grown) box, for the queries.
+  struct LeafTriangle {
+    std::array<std::array<double, 3>, 3> corners{};
     std::array<double, 3> lo{}, hi{};
-    std::uint32_t first = 0;  ///< leaf: first index into order_; inner: the left child
-    std::uint32_t count = 0;  ///< leaf: number of triangles; inner: 0
-    std::uint32_t right = 0;  ///< inner: the right child
+    std::uint32_t triangle = 0;  ///< its index into tris_
   };
   std::uint32_t build(std::uint32_t begin, std::uint32_t end,
                       const std::vector<std::array<double, 3>>& centroids);
@@ -69,6 +78,10 @@ class ReferenceSurface {
   std::vector<std::uint32_t> triFace_;       ///< the source face of each triangle
   std::vector<std::uint32_t> faceTriStart_;  ///< per source face, its first triangle (+ end)
   std::vector<std::uint32_t> order_;         ///< triangles in leaf order
+  std::vector<LeafTriangle> leafTris_;       ///< leafTris_[i] is triangle order_[i]
+  std::vector<std::uint32_t> leafSlot_;      ///< per triangle, its index into leafTris_
+  std::vector<std::uint32_t> leafNode_;      ///< per triangle, the leaf holding it
+  std::vector<std::uint32_t> parent_;        ///< per node, its parent (the root: itself)
   std::vector<Node> nodes_;                  ///< nodes_[0] is the root
 };
 

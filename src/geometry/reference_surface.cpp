@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "geometry/safe_box.h"
 #include "geometry/vec3.h"
 
 namespace voxremesh {
@@ -50,16 +51,6 @@ Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& 
     return e[best];
   }
   return a + ab * (vb / sum) + ac * (vc / sum);
-}
-
-/// Squared distance from p to the box [lo, hi].
-double boxDistance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
-  double d2 = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    const double d = p[k] < lo[k] ? lo[k] - p[k] : (p[k] > hi[k] ? p[k] - hi[k] : 0.0);
-    d2 += d * d;
-  }
-  return d2;
 }
 
 }  // namespace
@@ -116,33 +107,46 @@ ReferenceSurface::ReferenceSurface(const QuadMesh& mesh) : points_(mesh.points) 
         (points_[tris_[t][0]] + points_[tris_[t][1]] + points_[tris_[t][2]]) * (1.0 / 3.0);
   order_.resize(tris_.size());
   for (std::uint32_t t = 0; t < order_.size(); ++t) order_[t] = t;
+  leafTris_.resize(tris_.size());
+  leafSlot_.resize(tris_.size());
+  leafNode_.resize(tris_.size());
   nodes_.reserve(2 * tris_.size() / kLeafSize + 2);
   nodes_.emplace_back();
   build(0, static_cast<std::uint32_t>(order_.size()), centroids);
+  parent_.assign(nodes_.size(), 0);
+  for (std::uint32_t n = 0; n < nodes_.size(); ++n)
+    if (nodes_[n].count == 0) parent_[nodes_[n].first] = parent_[nodes_[n].right] = n;
 }
 
 std::uint32_t ReferenceSurface::build(std::uint32_t begin, std::uint32_t end,
                                       const std::vector<std::array<double, 3>>& centroids) {
   // Called with this node already appended to nodes_ (nodes_ may grow: no references kept).
   const std::uint32_t index = static_cast<std::uint32_t>(nodes_.size() - 1);
-  Vec3 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-          std::numeric_limits<double>::infinity()};
-  Vec3 hi = lo * -1.0;
-  Vec3 clo = lo, chi = hi;
-  for (std::uint32_t i = begin; i < end; ++i) {
-    for (const std::uint32_t v : tris_[order_[i]])
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], points_[v][k]);
-        hi[k] = std::max(hi[k], points_[v][k]);
-      }
-    for (int k = 0; k < 3; ++k) {
-      clo[k] = std::min(clo[k], centroids[order_[i]][k]);
-      chi[k] = std::max(chi[k], centroids[order_[i]][k]);
-    }
-  }
-  nodes_[index].lo = lo;
-  nodes_[index].hi = hi;
+  Box centroidBox;
+  for (std::uint32_t i = begin; i < end; ++i) centroidBox.add(centroids[order_[i]]);
+  const Vec3& clo = centroidBox.lo;
+  const Vec3& chi = centroidBox.hi;
   if (end - begin <= kLeafSize) {
+    // The triangles in leaf order with grown boxes (safeBox), the leaf's box holding them.
+    Box leafBox;
+    for (std::uint32_t i = begin; i < end; ++i) {
+      LeafTriangle& t = leafTris_[i];
+      t.triangle = order_[i];
+      leafSlot_[t.triangle] = i;
+      leafNode_[t.triangle] = index;
+      Box box;
+      for (int k = 0; k < 3; ++k) {
+        t.corners[static_cast<std::size_t>(k)] =
+            points_[tris_[t.triangle][static_cast<std::size_t>(k)]];
+        box.add(t.corners[static_cast<std::size_t>(k)]);
+      }
+      box = safeBox(box);
+      t.lo = box.lo;
+      t.hi = box.hi;
+      leafBox.add(box);
+    }
+    nodes_[index].lo = leafBox.lo;
+    nodes_[index].hi = leafBox.hi;
     nodes_[index].first = begin;
     nodes_[index].count = end - begin;
     return index;
@@ -160,6 +164,10 @@ std::uint32_t ReferenceSurface::build(std::uint32_t begin, std::uint32_t end,
   const std::uint32_t left = build(begin, middle, centroids);
   nodes_.emplace_back();
   const std::uint32_t right = build(middle, end, centroids);
+  Box box{nodes_[left].lo, nodes_[left].hi};
+  box.add(Box{nodes_[right].lo, nodes_[right].hi});
+  nodes_[index].lo = box.lo;
+  nodes_[index].hi = box.hi;
   nodes_[index].first = left;
   nodes_[index].count = 0;
   nodes_[index].right = right;
@@ -175,36 +183,68 @@ SurfaceHit ReferenceSurface::closestPoint(const std::array<double, 3>& p,
   SurfaceHit hit;
   double best2 = std::numeric_limits<double>::infinity();
   std::uint32_t bestTri = std::numeric_limits<std::uint32_t>::max();
-  // The best so far under the order (squared distance, triangle index), whatever the visit order.
-  auto consider = [&](std::uint32_t t) {
-    const auto& c = tris_[t];
-    const Vec3 q = closestOnTriangle(p, points_[c[0]], points_[c[1]], points_[c[2]]);
+  // The best so far under the order (squared distance, triangle index), whatever the visit order;
+  // a triangle whose box is farther than the best cannot win (an equal distance still may).
+  auto consider = [&](const LeafTriangle& t) {
+    if (boxDistance2(p, t.lo, t.hi) > best2) return;
+    const Vec3 q = closestOnTriangle(p, t.corners[0], t.corners[1], t.corners[2]);
     const double d2 = dot(p - q, p - q);
-    if (d2 < best2 || (d2 == best2 && t < bestTri)) {
+    if (d2 < best2 || (d2 == best2 && t.triangle < bestTri)) {
       best2 = d2;
-      bestTri = t;
+      bestTri = t.triangle;
       hit.point = q;
     }
   };
-  if (faceTriStart_.size() > 1 && hintFace < faceTriStart_.size() - 1)
-    for (std::uint32_t t = faceTriStart_[hintFace]; t < faceTriStart_[hintFace + 1]; ++t)
-      consider(t);
-  std::uint32_t stack[128];
-  std::size_t top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Node& node = nodes_[stack[--top]];
-    if (boxDistance2(p, node.lo, node.hi) > best2) continue;
-    if (node.count > 0) {
-      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) consider(order_[i]);
-      continue;
+  // Depth first below `root` (at squared box distance root2), the nearer child first, each box
+  // distance computed once.
+  struct Entry {
+    std::uint32_t node;
+    double distance2;
+  };
+  auto search = [&](std::uint32_t root, double root2) {
+    Entry stack[128];
+    std::size_t top = 0;
+    stack[top++] = {root, root2};
+    while (top > 0) {
+      const Entry entry = stack[--top];
+      if (entry.distance2 > best2) continue;
+      const Node& node = nodes_[entry.node];
+      if (node.count > 0) {
+        for (std::uint32_t i = node.first; i < node.first + node.count; ++i) consider(leafTris_[i]);
+        continue;
+      }
+      const Node& l = nodes_[node.first];
+      const Node& r = nodes_[node.right];
+      const double left2 = boxDistance2(p, l.lo, l.hi), right2 = boxDistance2(p, r.lo, r.hi);
+      // Push the nearer child last (visited first); a child farther than the best is left out.
+      if (left2 <= right2) {
+        if (!(right2 > best2)) stack[top++] = {node.right, right2};
+        if (!(left2 > best2)) stack[top++] = {node.first, left2};
+      } else {
+        if (!(left2 > best2)) stack[top++] = {node.first, left2};
+        if (!(right2 > best2)) stack[top++] = {node.right, right2};
+      }
     }
-    // Visit the nearer child first: push it last.
-    const Node& l = nodes_[node.first];
-    const Node& r = nodes_[node.right];
-    const bool leftNearer = boxDistance2(p, l.lo, l.hi) <= boxDistance2(p, r.lo, r.hi);
-    stack[top++] = leftNearer ? node.right : node.first;
-    stack[top++] = leftNearer ? node.first : node.right;
+  };
+  if (faceTriStart_.size() > 1 && hintFace < faceTriStart_.size() - 1) {
+    // The hint's triangles, the rest of the leaf of its first, then up to the root: at each
+    // step the other child's subtree. Every node below the root is searched or pruned once.
+    const std::uint32_t first = faceTriStart_[hintFace], end = faceTriStart_[hintFace + 1];
+    for (std::uint32_t t = first; t < end; ++t) consider(leafTris_[leafSlot_[t]]);
+    std::uint32_t node = leafNode_[first];
+    const Node& leaf = nodes_[node];
+    for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i)
+      if (leafTris_[i].triangle < first || leafTris_[i].triangle >= end) consider(leafTris_[i]);
+    while (node != 0) {
+      const std::uint32_t parent = parent_[node];
+      const std::uint32_t other =
+          nodes_[parent].first == node ? nodes_[parent].right : nodes_[parent].first;
+      const double other2 = boxDistance2(p, nodes_[other].lo, nodes_[other].hi);
+      if (!(other2 > best2)) search(other, other2);
+      node = parent;
+    }
+  } else {
+    search(0, boxDistance2(p, nodes_[0].lo, nodes_[0].hi));
   }
   if (bestTri == std::numeric_limits<std::uint32_t>::max())
     throw std::invalid_argument("ReferenceSurface::closestPoint: the query point is not finite");

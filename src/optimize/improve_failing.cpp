@@ -139,9 +139,11 @@ std::vector<std::vector<Vec3>> fixedPointsOnCurves(const QuadMesh& mesh) {
 /// `fixedOnCurve` (fixedPointsOnCurves): a curve point never goes within a small distance of a
 /// fixed point of its curve (moving along a curve past a sharp turn or the end of a line, the
 /// closest curve point is the vertex there, where a Corner may sit: the two would coincide).
+/// `curves`: the indexes of the mesh's curves (opt::indexCurves).
 bool improvePoint(QuadMesh& mesh, const opt::Topology& t, const ReferenceSurface& original,
                   const QualitySettings& settings,
-                  const std::vector<std::vector<Vec3>>& fixedOnCurve, CornerIndex v) {
+                  const std::vector<std::vector<Vec3>>& fixedOnCurve,
+                  const std::vector<PolylineIndex>& curves, CornerIndex v) {
   const Vec3 start = mesh.points[v];
   const bool free = opt::roleOf(mesh, v) == PointRole::Free;
   Vec3 normal;
@@ -162,7 +164,7 @@ bool improvePoint(QuadMesh& mesh, const opt::Topology& t, const ReferenceSurface
                                           normalized(u + w) * -1.0};
   std::uint32_t hint = kNoCorner;
   auto place = [&](const Vec3& wanted) {
-    if (!free) return opt::constrainedPosition(mesh, v, wanted);
+    if (!free) return opt::constrainedPosition(mesh, curves, v, wanted);
     const SurfaceHit hit = original.closestPoint(wanted, hint);
     hint = hit.face;
     return hit.point;
@@ -211,6 +213,7 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
   opt::checkMesh(mesh);
   const opt::Topology topology = opt::buildTopology(mesh);
   const std::vector<std::vector<Vec3>> fixedOnCurve = fixedPointsOnCurves(mesh);
+  const std::vector<PolylineIndex> curves = opt::indexCurves(mesh);
   std::size_t moved = 0;
   std::vector<std::uint8_t> movedNow(mesh.points.size(), 0);
   // A point's search depends only on the positions of the points of its faces: a point whose
@@ -238,13 +241,12 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
       points.erase(std::remove_if(points.begin(), points.end(), unchangedSinceSearch),
                    points.end());
       ++stamp;
-      tbb::parallel_for(
-          tbb::blocked_range<std::size_t>(0, points.size(), 8),
-          [&](const tbb::blocked_range<std::size_t>& r) {
-            for (std::size_t i = r.begin(); i < r.end(); ++i)
-              movedNow[points[i]] =
-                  improvePoint(mesh, topology, original, settings, fixedOnCurve, points[i]) ? 1 : 0;
-          });
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 8),
+                        [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t i = r.begin(); i < r.end(); ++i)
+                            movedNow[points[i]] = improvePoint(mesh, topology, original, settings,
+                                                               fixedOnCurve, curves, points[i]);
+                        });
       for (const CornerIndex v : points) {
         movedThisSweep += movedNow[v];
         movedAt[v] = movedNow[v] ? stamp : movedAt[v];

@@ -142,6 +142,25 @@ Vec3 constrainedPosition(const QuadMesh& mesh, CornerIndex v, const Vec3& wanted
   return wanted;
 }
 
+std::vector<PolylineIndex> indexCurves(const QuadMesh& mesh) {
+  std::vector<PolylineIndex> curves;
+  curves.reserve(mesh.curves.size());
+  for (const MeshCurve& curve : mesh.curves) curves.emplace_back(curve.points, curve.closed);
+  return curves;
+}
+
+Vec3 constrainedPosition(const QuadMesh& mesh, const std::vector<PolylineIndex>& curves,
+                         CornerIndex v, const Vec3& wanted) {
+  if (curves.size() != mesh.curves.size())
+    throw std::invalid_argument("constrainedPosition: " + std::to_string(curves.size()) +
+                                " curve indexes for " + std::to_string(mesh.curves.size()) +
+                                " curves");
+  const PointRole role = roleOf(mesh, v);
+  if (role == PointRole::Corner) return mesh.points[v];
+  if (isCurveRole(role)) return curves[mesh.constraints[v].curve].closestPoint(wanted);
+  return wanted;
+}
+
 std::optional<Merge> mergeUnderConstraints(const QuadMesh& mesh, CornerIndex u, CornerIndex v) {
   const PointRole ru = roleOf(mesh, u), rv = roleOf(mesh, v);
   const Vec3 middle = (mesh.points[u] + mesh.points[v]) * 0.5;

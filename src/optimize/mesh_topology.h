@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "geometry/polyline_index.h"
 #include "geometry/vec3.h"
 #include "voxremesh/quad_mesh.h"
 #include "voxremesh/reference_surface.h"
@@ -54,6 +55,16 @@ Topology buildTopology(const QuadMesh& mesh, const std::vector<std::uint8_t>* de
 /// Where point v may be when it would like to be at `wanted`: Corner: where it is; curve point:
 /// the closest point of its curve; Free: wanted.
 Vec3 constrainedPosition(const QuadMesh& mesh, CornerIndex v, const Vec3& wanted);
+
+/// Closest-point indexes of the curves of `mesh`, result[c] for mesh.curves[c]. They hold copies
+/// of the curves: valid while the points and faces of the mesh change, stale once its curves do.
+std::vector<PolylineIndex> indexCurves(const QuadMesh& mesh);
+
+/// constrainedPosition(mesh, v, wanted), the same position bit for bit, with the closest curve
+/// point from `curves` (indexCurves(mesh), built since the curves last changed) instead of a scan
+/// of the curve. Throws std::invalid_argument when curves.size() != mesh.curves.size().
+Vec3 constrainedPosition(const QuadMesh& mesh, const std::vector<PolylineIndex>& curves,
+                         CornerIndex v, const Vec3& wanted);
 
 /// The outcome of merging two points: the point that stays and its new position.
 struct Merge {

@@ -103,16 +103,19 @@ Vec3 project(const ReferenceSurface& original, const Vec3& q, std::uint32_t& hin
 }
 
 /// The new position of point v in one relaxation step (see relaxMesh); `along` holds its curve
-/// or boundary neighbours, `hint` the face of its previous projection on `original`.
+/// or boundary neighbours, `curves` the indexes of the mesh's curves (opt::indexCurves), `hint`
+/// the face of its previous projection on `original`.
 Vec3 relaxed(const QuadMesh& mesh, const opt::Topology& t, const ReferenceSurface& original,
              const std::vector<std::array<Vec3, 4>>& ideal, const std::vector<CornerIndex>& along,
-             CornerIndex v, double damping, std::uint32_t& hint) {
+             const std::vector<PolylineIndex>& curves, CornerIndex v, double damping,
+             std::uint32_t& hint) {
   const Vec3& p = mesh.points[v];
   const PointRole role = opt::roleOf(mesh, v);
   if (t.faceCount(v) == 0 || role == PointRole::Corner) return p;
   if (role == PointRole::Free && !t.boundary[v])
     return project(original, p + (idealTarget(mesh, t, ideal, v) - p) * damping, hint);
-  if (along.size() != 2) return role == PointRole::Free ? p : opt::constrainedPosition(mesh, v, p);
+  if (along.size() != 2)
+    return role == PointRole::Free ? p : opt::constrainedPosition(mesh, curves, v, p);
   const Vec3& a = mesh.points[along[0]];
   const Vec3& b = mesh.points[along[1]];
   Vec3 move = (a + b) * 0.5 - p;
@@ -123,7 +126,7 @@ Vec3 relaxed(const QuadMesh& mesh, const opt::Topology& t, const ReferenceSurfac
     const Vec3 tangent = normalized(b - a);
     return project(original, p + tangent * (dot(move, tangent) * damping), hint);
   }
-  return opt::constrainedPosition(mesh, v, p + move * damping);
+  return opt::constrainedPosition(mesh, curves, v, p + move * damping);
 }
 
 }  // namespace
@@ -145,6 +148,7 @@ void relaxMesh(QuadMesh& mesh, const ReferenceSurface& original, int iterations,
   for (CornerIndex v = 0; v < count; ++v) along[v] = curveNeighbours(mesh, topology, v);
   std::vector<Vec3> next(count);
   std::vector<std::uint32_t> hints(count, kNoCorner);
+  const std::vector<PolylineIndex> curves = opt::indexCurves(mesh);
   std::vector<std::array<Vec3, 4>> ideal(mesh.faces.size());
   for (int iteration = 0; iteration < iterations; ++iteration) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, ideal.size(), 64),
@@ -156,7 +160,7 @@ void relaxMesh(QuadMesh& mesh, const ReferenceSurface& original, int iterations,
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 64),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t v = r.begin(); v < r.end(); ++v)
-                          next[v] = relaxed(mesh, topology, original, ideal, along[v],
+                          next[v] = relaxed(mesh, topology, original, ideal, along[v], curves,
                                             static_cast<CornerIndex>(v), damping, hints[v]);
                       });
     mesh.points.swap(next);
