@@ -132,14 +132,24 @@ Topology buildTopology(const QuadMesh& mesh, const std::vector<std::uint8_t>* de
   return t;
 }
 
-Vec3 constrainedPosition(const QuadMesh& mesh, CornerIndex v, const Vec3& wanted) {
+namespace {
+
+/// The position of point v nearest to `wanted` under its constraint (see constrainedPosition),
+/// with `onCurve(c, q)` the closest point of curve c to q.
+template <class OnCurve>
+Vec3 constrained(const QuadMesh& mesh, CornerIndex v, const Vec3& wanted, const OnCurve& onCurve) {
   const PointRole role = roleOf(mesh, v);
   if (role == PointRole::Corner) return mesh.points[v];
-  if (isCurveRole(role)) {
-    const MeshCurve& curve = mesh.curves[mesh.constraints[v].curve];
-    return closestPointOnPolyline(curve.points, curve.closed, wanted);
-  }
+  if (isCurveRole(role)) return onCurve(mesh.constraints[v].curve, wanted);
   return wanted;
+}
+
+}  // namespace
+
+Vec3 constrainedPosition(const QuadMesh& mesh, CornerIndex v, const Vec3& wanted) {
+  return constrained(mesh, v, wanted, [&](std::uint32_t c, const Vec3& q) {
+    return closestPointOnPolyline(mesh.curves[c].points, mesh.curves[c].closed, q);
+  });
 }
 
 std::vector<PolylineIndex> indexCurves(const QuadMesh& mesh) {
@@ -155,10 +165,8 @@ Vec3 constrainedPosition(const QuadMesh& mesh, const std::vector<PolylineIndex>&
     throw std::invalid_argument("constrainedPosition: " + std::to_string(curves.size()) +
                                 " curve indexes for " + std::to_string(mesh.curves.size()) +
                                 " curves");
-  const PointRole role = roleOf(mesh, v);
-  if (role == PointRole::Corner) return mesh.points[v];
-  if (isCurveRole(role)) return curves[mesh.constraints[v].curve].closestPoint(wanted);
-  return wanted;
+  return constrained(mesh, v, wanted,
+                     [&](std::uint32_t c, const Vec3& q) { return curves[c].closestPoint(q); });
 }
 
 std::optional<Merge> mergeUnderConstraints(const QuadMesh& mesh, CornerIndex u, CornerIndex v) {
