@@ -225,6 +225,8 @@ int run(int argc, char** argv) {
               best.improvedMoves);
   std::printf("    edge rotation     %8.4f s  (%zu edges)\n", best.rotateSeconds,
               best.edgesRotated);
+  std::printf("    reconnection      %8.4f s  (%zu neighbourhoods)\n", best.reconnectSeconds,
+              best.reconnected);
   std::printf("    warping removal   %8.4f s  (%d iterations, %zu -> %zu warped)\n",
               best.warpingSeconds, best.warping.iterations, best.warping.warpedBefore,
               best.warping.warpedAfter);

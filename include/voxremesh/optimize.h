@@ -191,6 +191,23 @@ std::size_t rotateFailingEdges(QuadMesh& mesh, const QualitySettings& settings, 
 /// Throws std::invalid_argument for a bad mesh.
 std::size_t splitInvertedQuads(QuadMesh& mesh);
 
+/// Reconnection of failing faces: for each face failing a criterion (quality.h, under
+/// `settings`), in index order, its neighbourhood (the faces round the points of the faces round
+/// its corners) is tried as it is and after each change of connectivity at the face: every other
+/// cut of the polygon it makes with a neighbour across one of its edges (as rotateFailingEdges,
+/// under the same rules) and, for a quad, the collapse of either diagonal (under the constraint
+/// and manifold rules of the rhombic collapse). Each try is followed by up to `sweeps` rounds of
+/// the pattern search of improveFailingElements over the points of the faces round the face's
+/// corners; the try whose neighbourhood then scores best is kept when it fails fewer criteria
+/// than the neighbourhood did. Neighbourhoods changed in a round do not overlap; rounds repeat
+/// until none changes or `maxRounds` is reached. Serial, deterministic.
+/// @return the number of neighbourhoods changed
+/// Throws std::invalid_argument for an empty surface, negative rounds or sweeps,
+/// settings.targetSize <= 0 or a bad mesh; SettingError for bad settings.
+std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& original,
+                                  const QualitySettings& settings, int maxRounds = 3,
+                                  int sweeps = 3);
+
 /// Settings of optimizeQuadMesh.
 struct OptimizeSettings {
   /// Quality limits: targetSize (0: the median edge length of the input mesh) scales the
@@ -213,6 +230,8 @@ struct OptimizeSettings {
   /// the bracket at 4.5 mm (with the former 30-degree feature angle): 1 sweep 5.3 % failing,
   /// 3 sweeps 4.5 %; more gained nothing.
   int improveSweeps = 3;
+  /// Rounds of reconnectFailingFaces after the last improveFailingElements pass (0: none).
+  int reconnectRounds = 8;
   /// A face is of zero area below zeroAreaFactor x targetSize^2.
   double zeroAreaFactor = 1e-4;
   /// Edges longer than splitLengthFactor x targetSize whose midpoint lies farther than
@@ -247,6 +266,7 @@ struct OptimizeStats {
   double improveSeconds = 0.0;
   double rotateSeconds = 0.0;
   double warpingSeconds = 0.0;
+  double reconnectSeconds = 0.0;
   double totalSeconds = 0.0;
   std::size_t edgesSplit = 0;
   CleanupResult cleanup;  ///< summed over both clean-up passes
@@ -254,6 +274,7 @@ struct OptimizeStats {
   std::size_t trianglesMerged = 0;  ///< quads made from triangle pairs
   std::size_t improvedMoves = 0;    ///< points moved by improveFailingElements
   std::size_t edgesRotated = 0;
+  std::size_t reconnected = 0;    ///< neighbourhoods changed by reconnectFailingFaces
   std::size_t invertedSplit = 0;  ///< quads with a reflex corner split into two triangles (last)
   WarpingResult warping;
 };
@@ -261,7 +282,8 @@ struct OptimizeStats {
 /// Runs the steps: edge splitting, clean-up, rhombic collapse, clean-up, relaxation, triangle
 /// merging, relaxation, improvement of the failing elements, edge rotation (and the improvement
 /// again where any rotated), warping removal, the improvement once more (it takes only moves that
-/// leave fewer criteria failing around a point, warping included), and last the split of quads
+/// leave fewer criteria failing around a point, warping included), the reconnection of the faces
+/// still failing (reconnectFailingFaces), and last the split of quads
 /// still inverted (splitInvertedQuads).
 /// @param mesh      the extracted mesh (preconditions at the top of the file)
 /// @param original  the original surface (built from the input shells), not empty

@@ -161,12 +161,13 @@ std::vector<PolylineIndex> indexCurves(const QuadMesh& mesh) {
 
 Vec3 constrainedPosition(const QuadMesh& mesh, const std::vector<PolylineIndex>& curves,
                          CornerIndex v, const Vec3& wanted) {
-  if (curves.size() != mesh.curves.size())
-    throw std::invalid_argument("constrainedPosition: " + std::to_string(curves.size()) +
-                                " curve indexes for " + std::to_string(mesh.curves.size()) +
-                                " curves");
-  return constrained(mesh, v, wanted,
-                     [&](std::uint32_t c, const Vec3& q) { return curves[c].closestPoint(q); });
+  return constrained(mesh, v, wanted, [&](std::uint32_t c, const Vec3& q) {
+    if (c >= curves.size())
+      throw std::invalid_argument("constrainedPosition: curve " + std::to_string(c) + " of point " +
+                                  std::to_string(v) + " has no index (" +
+                                  std::to_string(curves.size()) + " curve indexes)");
+    return curves[c].closestPoint(q);
+  });
 }
 
 std::optional<Merge> mergeUnderConstraints(const QuadMesh& mesh, CornerIndex u, CornerIndex v) {

@@ -61,8 +61,10 @@ Vec3 constrainedPosition(const QuadMesh& mesh, CornerIndex v, const Vec3& wanted
 std::vector<PolylineIndex> indexCurves(const QuadMesh& mesh);
 
 /// constrainedPosition(mesh, v, wanted), the same position bit for bit, with the closest curve
-/// point from `curves` (indexCurves(mesh), built since the curves last changed) instead of a scan
-/// of the curve. Throws std::invalid_argument when curves.size() != mesh.curves.size().
+/// point from `curves` (indexCurves of the mesh whose curves the constraints name, built since
+/// those curves last changed) instead of a scan of the curve. A patch cut out of a mesh may keep
+/// its constraints and leave its own curves empty: only `curves` is read. Throws
+/// std::invalid_argument when v is a curve point whose curve has no index in `curves`.
 Vec3 constrainedPosition(const QuadMesh& mesh, const std::vector<PolylineIndex>& curves,
                          CornerIndex v, const Vec3& wanted);
 

@@ -22,7 +22,8 @@ void checkOptimizeSettings(const OptimizeSettings& s) {
   if (!std::isfinite(s.warpingDeg) || s.warpingDeg < 0.0 || s.warpingDeg > 180.0)
     throw SettingError("optimize: warpingDeg " + std::to_string(s.warpingDeg) +
                        " is outside 0 .. 180");
-  if (s.warpingIterations < 0 || s.relaxIterations < 0 || s.improveSweeps < 0)
+  if (s.warpingIterations < 0 || s.relaxIterations < 0 || s.improveSweeps < 0 ||
+      s.reconnectRounds < 0)
     throw SettingError("optimize: iteration counts must be >= 0");
   if (!(s.relaxDamping > 0.0 && s.relaxDamping <= 0.7))
     throw SettingError("optimize: relaxDamping " + std::to_string(s.relaxDamping) +
@@ -122,6 +123,11 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
                             settings.warpingMoveFactor * quality.targetSize);
   s.warpingSeconds = secondsSince(t);
   if (improve) improveFailing();
+  if (settings.reconnectRounds > 0 && quality.targetSize > 0.0) {
+    const Clock::time_point r = Clock::now();
+    s.reconnected = reconnectFailingFaces(mesh, original, quality, settings.reconnectRounds);
+    s.reconnectSeconds = secondsSince(r);
+  }
   s.invertedSplit = splitInvertedQuads(mesh);
   s.totalSeconds = secondsSince(start);
   if (stats) *stats = s;

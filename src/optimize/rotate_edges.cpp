@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "optimize/edge_polygon.h"
 #include "optimize/face_score.h"
 #include "optimize/mesh_topology.h"
 #include "voxremesh/optimize.h"
@@ -14,37 +15,13 @@ namespace voxremesh {
 
 namespace {
 
-using Face = std::array<CornerIndex, 4>;
+using opt::cutPolygon;
+using opt::diagonalEnd;
+using opt::Face;
 using Edge = std::pair<CornerIndex, CornerIndex>;
 
 Edge edgeKey(CornerIndex a, CornerIndex b) {
   return {std::min(a, b), std::max(a, b)};
-}
-
-/// The corners of `face` from the one after `from` round to `to`, both included: the face's
-/// part of the polygon two faces make around their shared edge.
-std::vector<CornerIndex> walk(const Face& face, CornerIndex from, CornerIndex to) {
-  const int n = cornerCount(face);
-  int k = 0;
-  while (face[std::size_t(k)] != from) ++k;
-  std::vector<CornerIndex> corners;
-  for (int step = 1; step <= n; ++step) {
-    const CornerIndex v = face[std::size_t((k + step) % n)];
-    corners.push_back(v);
-    if (v == to) break;
-  }
-  return corners;
-}
-
-/// The two faces a polygon of 4, 5 or 6 corners is cut into along the diagonal from corner i to
-/// corner i + 3 (4 corners: i to i + 2): a quad and what is left (a quad, a triangle).
-std::array<Face, 2> cut(const std::vector<CornerIndex>& polygon, std::size_t i) {
-  const std::size_t n = polygon.size();
-  auto at = [&](std::size_t k) { return polygon[(i + k) % n]; };
-  if (n == 4) return {Face{at(0), at(1), at(2), kNoCorner}, Face{at(2), at(3), at(0), kNoCorner}};
-  const Face first{at(0), at(1), at(2), at(3)};
-  if (n == 5) return {first, Face{at(3), at(4), at(0), kNoCorner}};
-  return {first, Face{at(3), at(4), at(5), at(0)}};
 }
 
 }  // namespace
@@ -87,16 +64,11 @@ std::size_t rotateFailingEdges(QuadMesh& mesh, const QualitySettings& settings, 
             g = *h;
         }
         if (g == f || locked[g]) continue;
-        // The polygon round both faces, oriented like f: f from b to a, then g from a to b
-        // (g runs the edge from b to a when both are oriented alike).
-        std::vector<CornerIndex> polygon = walk(mesh.faces[f], a, a);
-        std::rotate(polygon.begin(), std::find(polygon.begin(), polygon.end(), b), polygon.end());
-        if (walk(mesh.faces[g], b, a).size() != 1) continue;  // g runs (a, b) the same way
-        const std::vector<CornerIndex> rest = walk(mesh.faces[g], a, b);
-        polygon.insert(polygon.end(), rest.begin(), rest.end() - 1);
-        std::vector<CornerIndex> sorted = polygon;
-        std::sort(sorted.begin(), sorted.end());
-        if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
+        // The polygon round both faces, oriented like f (empty when g runs (a, b) the same way
+        // or the two faces share another corner).
+        const std::vector<CornerIndex> polygon =
+            opt::polygonAroundEdge(mesh.faces[f], mesh.faces[g], a, b);
+        if (polygon.empty()) continue;
         // Both ends of the edge lose a face: none may be left in fewer than 3 (inside the
         // surface) or 2 (on the boundary), which would be a doublet or a spike.
         if (faceCount[a] < (topology.boundary[a] ? 3u : 4u) ||
@@ -109,17 +81,17 @@ std::size_t rotateFailingEdges(QuadMesh& mesh, const QualitySettings& settings, 
         std::size_t chosen = polygon.size();
         for (std::size_t i = 0; i < polygon.size(); ++i) {
           if (polygon.size() != 5 && i >= polygon.size() / 2) continue;
-          const std::size_t j = (i + (polygon.size() == 4 ? 2 : 3)) % polygon.size();
+          const std::size_t j = diagonalEnd(polygon.size(), i);
           const CornerIndex p = polygon[i], q = polygon[j];
           if (isEdge(p, q) || (!isFree(p) && !isFree(q))) continue;
-          const std::array<Face, 2> faces = cut(polygon, i);
+          const std::array<Face, 2> faces = cutPolygon(polygon, i);
           opt::Score score = opt::faceScore(mesh, faces[0], settings);
           score += opt::faceScore(mesh, faces[1], settings);
           if (score.betterThan(best)) best = score, chosen = i;
         }
         if (chosen == polygon.size()) continue;
-        const std::array<Face, 2> faces = cut(polygon, chosen);
-        const std::size_t j = (chosen + (polygon.size() == 4 ? 2 : 3)) % polygon.size();
+        const std::array<Face, 2> faces = cutPolygon(polygon, chosen);
+        const std::size_t j = diagonalEnd(polygon.size(), chosen);
         removed.insert(edgeKey(a, b));
         added.insert(edgeKey(polygon[chosen], polygon[j]));
         --faceCount[a], --faceCount[b];

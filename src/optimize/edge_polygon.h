@@ -1,0 +1,31 @@
+// The polygon two faces make around the edge they share, and its cuts along other diagonals: what
+// edge rotation (rotateFailingEdges, reconnectFailingFaces) chooses between.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "voxremesh/quad_mesh.h"
+
+namespace voxremesh::opt {
+
+using Face = std::array<CornerIndex, 4>;
+
+/// The polygon round faces f and g, which share the edge (a, b) with a followed by b in f:
+/// f's corners from b round to a, then g's after a up to before b, so oriented like f. Empty when
+/// g runs the edge from a to b too (the two are oriented against each other) or the polygon would
+/// repeat a corner.
+std::vector<CornerIndex> polygonAroundEdge(const Face& f, const Face& g, CornerIndex a,
+                                           CornerIndex b);
+
+/// The corner the diagonal from corner i of a polygon of n corners (4 to 6) goes to in a cut
+/// into a quad and the rest: i + 2 for 4 corners, i + 3 otherwise (modulo n).
+std::size_t diagonalEnd(std::size_t n, std::size_t i);
+
+/// The two faces a polygon of 4, 5 or 6 corners is cut into along the diagonal from corner i to
+/// diagonalEnd(n, i): a triangle pair for 4 corners, a quad and a triangle for 5, two quads for
+/// 6, oriented like the polygon.
+std::array<Face, 2> cutPolygon(const std::vector<CornerIndex>& polygon, std::size_t i);
+
+}  // namespace voxremesh::opt

@@ -1,0 +1,152 @@
+// The pattern search of one point (point_search.h).
+#include "optimize/point_search.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace voxremesh::opt {
+
+using namespace geom;  // NOLINT: the vector operators
+
+namespace {
+
+/// Whether the summed score of the faces around v is better than `best` (Score::betterThan),
+/// summed in the order of scoreAround and given up as soon as the part summed cannot be better
+/// (failures and penalties are never negative). The summed score goes to `score` when better.
+bool scoresBetterAround(const QuadMesh& mesh, const Topology& t, CornerIndex v,
+                        const QualitySettings& settings, const Score& best, Score& score) {
+  Score sum;
+  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f) {
+    sum += faceScore(mesh, mesh.faces[*f], settings);
+    if (sum.failures > best.failures || (sum.failures == best.failures && !sum.betterThan(best)))
+      return false;
+  }
+  score = sum;
+  return true;
+}
+
+/// A unit normal of the surface at v (the sum of its faces' normals) and the mean length of its
+/// edges.
+void localFrame(const QuadMesh& mesh, const Topology& t, CornerIndex v, Vec3& normal,
+                double& edge) {
+  const auto& p = mesh.points;
+  Vec3 sum{0.0, 0.0, 0.0};
+  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f) {
+    const auto& face = mesh.faces[*f];
+    sum = sum + (cornerCount(face) == 3 ? cross(p[face[1]] - p[face[0]], p[face[2]] - p[face[0]])
+                                        : cross(p[face[2]] - p[face[0]], p[face[3]] - p[face[1]]));
+  }
+  normal = normalized(sum);
+  edge = 0.0;
+  for (const std::uint32_t* w = t.nbrsBegin(v); w != t.nbrsEnd(v); ++w)
+    edge += distance(p[v], p[*w]);
+  edge /= double(std::max<std::size_t>(1, t.degree(v)));
+}
+
+}  // namespace
+
+/// The summed score of the faces around v.
+Score scoreAround(const QuadMesh& mesh, const Topology& t, CornerIndex v,
+                  const QualitySettings& settings) {
+  Score score;
+  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f)
+    score += faceScore(mesh, mesh.faces[*f], settings);
+  return score;
+}
+
+/// Per curve, the positions of the fixed points (Corners, Junction points) that lie on it.
+std::vector<std::vector<Vec3>> fixedPointsOnCurves(const QuadMesh& mesh) {
+  std::vector<std::vector<Vec3>> result(mesh.curves.size());
+  std::vector<std::array<Vec3, 2>> boxes(mesh.curves.size());  // lower and upper corner
+  for (std::size_t c = 0; c < mesh.curves.size(); ++c) {
+    if (mesh.curves[c].points.empty()) continue;
+    boxes[c] = {mesh.curves[c].points.front(), mesh.curves[c].points.front()};
+    for (const Vec3& q : mesh.curves[c].points)
+      for (std::size_t k = 0; k < 3; ++k) {
+        boxes[c][0][k] = std::min(boxes[c][0][k], q[k]);
+        boxes[c][1][k] = std::max(boxes[c][1][k], q[k]);
+      }
+  }
+  for (CornerIndex v = 0; v < mesh.points.size(); ++v) {
+    if (roleOf(mesh, v) != PointRole::Corner) continue;
+    const Vec3& p = mesh.points[v];
+    const double tolerance = 1e-9 * (1.0 + norm(p));
+    for (std::size_t c = 0; c < mesh.curves.size(); ++c) {
+      bool inBox = !mesh.curves[c].points.empty();
+      for (std::size_t k = 0; k < 3; ++k)
+        inBox = inBox && p[k] >= boxes[c][0][k] - tolerance && p[k] <= boxes[c][1][k] + tolerance;
+      if (inBox && distance(p, closestPointOnPolyline(mesh.curves[c].points, mesh.curves[c].closed,
+                                                      p)) <= tolerance)
+        result[c].push_back(p);
+    }
+  }
+  return result;
+}
+
+/// The pattern search of one point (see improveFailingElements). Returns whether it moved.
+/// `fixedOnCurve` (fixedPointsOnCurves): a curve point never goes within a small distance of a
+/// fixed point of its curve (moving along a curve past a sharp turn or the end of a line, the
+/// closest curve point is the vertex there, where a Corner may sit: the two would coincide).
+/// `curves`: the indexes of the mesh's curves (indexCurves).
+bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& original,
+                  const QualitySettings& settings,
+                  const std::vector<std::vector<Vec3>>& fixedOnCurve,
+                  const std::vector<PolylineIndex>& curves, CornerIndex v) {
+  const Vec3 start = mesh.points[v];
+  const bool free = roleOf(mesh, v) == PointRole::Free;
+  Vec3 normal;
+  double edge = 0.0;
+  localFrame(mesh, t, v, normal, edge);
+  if (!(edge > 0.0) || norm(normal) == 0.0) return false;
+  // An in-plane basis.
+  const Vec3 axis = std::abs(normal[0]) < 0.9 ? Vec3{1.0, 0.0, 0.0} : Vec3{0.0, 1.0, 0.0};
+  const Vec3 u = normalized(cross(normal, axis));
+  const Vec3 w = cross(normal, u);
+  const std::array<Vec3, 8> directions = {u,
+                                          u * -1.0,
+                                          w,
+                                          w * -1.0,
+                                          normalized(u + w),
+                                          normalized(u - w) * -1.0,
+                                          normalized(u - w),
+                                          normalized(u + w) * -1.0};
+  std::uint32_t hint = kNoCorner;
+  auto place = [&](const Vec3& wanted) {
+    if (!free) return constrainedPosition(mesh, curves, v, wanted);
+    const SurfaceHit hit = original.closestPoint(wanted, hint);
+    hint = hit.face;
+    return hit.point;
+  };
+  const std::vector<Vec3> none;
+  const std::vector<Vec3>& fixed = free ? none : fixedOnCurve[mesh.constraints[v].curve];
+  auto onFixedPoint = [&](const Vec3& q) {
+    for (const Vec3& c : fixed)
+      if (distance(q, c) < 0.05 * edge) return true;
+    return false;
+  };
+  Score best = scoreAround(mesh, t, v, settings);
+  if (best.failures == 0 && best.penalty == 0.0) return false;
+  Vec3 position = start;
+  for (double step = 0.25 * edge; step > 0.01 * edge; step *= 0.5) {
+    bool improved = true;
+    for (int round = 0; improved && round < 8; ++round) {
+      improved = false;
+      for (const Vec3& direction : directions) {
+        mesh.points[v] = place(position + direction * step);
+        if (onFixedPoint(mesh.points[v])) continue;
+        Score score;
+        if (scoresBetterAround(mesh, t, v, settings, best, score)) {
+          best = score;
+          position = mesh.points[v];
+          improved = true;
+          break;
+        }
+      }
+    }
+  }
+  mesh.points[v] = position;
+  return position != start;
+}
+
+}  // namespace voxremesh::opt

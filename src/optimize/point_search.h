@@ -1,0 +1,37 @@
+// The pattern search that moves one point to lower the failures of its faces, shared by
+// improveFailingElements and reconnectFailingFaces (optimize.h).
+#pragma once
+
+#include <vector>
+
+#include "optimize/face_score.h"
+#include "optimize/mesh_topology.h"
+#include "voxremesh/quality.h"
+#include "voxremesh/reference_surface.h"
+
+namespace voxremesh::opt {
+
+/// The summed score of the faces around v (topology `t` of `mesh`).
+Score scoreAround(const QuadMesh& mesh, const Topology& t, CornerIndex v,
+                  const QualitySettings& settings);
+
+/// Per curve of `mesh`, the positions of the fixed points (Corners, Junction points) that lie on
+/// it. Preconditions: checkMesh(mesh) holds.
+std::vector<std::vector<Vec3>> fixedPointsOnCurves(const QuadMesh& mesh);
+
+/// The pattern search of one point: steps of a quarter of its mean edge length, halved down to a
+/// hundredth, in 8 directions of the plane normal to the sum of its faces' normals; a Free point
+/// is projected on `original`, a curve point kept on its curve, and a step is taken when the
+/// faces around the point score better (Score::betterThan). Returns whether the point moved.
+/// @param mesh          the mesh; `t` its topology; v a point of it
+/// @param fixedOnCurve  fixedPointsOnCurves of the mesh whose curves the constraints name: a curve
+///                      point never comes within a twentieth of an edge of a fixed point of its
+///                      curve (the two would coincide past a sharp turn or the end of a line)
+/// @param curves        indexCurves of that mesh
+/// Preconditions: v is not a Corner; its curve, if any, is indexed in both lists.
+bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& original,
+                  const QualitySettings& settings,
+                  const std::vector<std::vector<Vec3>>& fixedOnCurve,
+                  const std::vector<PolylineIndex>& curves, CornerIndex v);
+
+}  // namespace voxremesh::opt

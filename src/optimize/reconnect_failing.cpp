@@ -1,0 +1,302 @@
+// reconnectFailingFaces: tries other connectivities round each failing face (edge rotations,
+// diagonal collapses), each followed by a pattern search of the points round it, and keeps the
+// one whose neighbourhood fails fewest criteria (see optimize.h).
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
+#include "optimize/edge_polygon.h"
+#include "optimize/point_search.h"
+#include "voxremesh/optimize.h"
+
+namespace voxremesh {
+
+namespace {
+
+using opt::Face;
+using opt::Vec3;
+using namespace geom;  // NOLINT: the vector operators
+
+/// The faces round the points round a failing face: what a change of connectivity at the face,
+/// and the searches of the points of its faces' neighbours, can alter.
+struct Neighbourhood {
+  std::vector<std::uint32_t> faces;    ///< ascending
+  std::vector<CornerIndex> searched;   ///< points of the faces round the face's corners, ascending
+  std::vector<CornerIndex> allPoints;  ///< the corners of `faces`, ascending
+};
+
+/// A change of connectivity inside a neighbourhood.
+struct Edit {
+  std::vector<std::uint32_t> removed;  ///< faces taken out
+  std::vector<Face> added;             ///< faces put in (before the merge)
+  std::optional<opt::Merge> merge;     ///< two points made one
+};
+
+/// A neighbourhood after an edit and the searches: its own small mesh.
+struct Trial {
+  QuadMesh mesh;                    ///< points, constraints, faces (curves left empty)
+  std::vector<CornerIndex> global;  ///< global index per point of `mesh`
+  opt::Score score;
+  double chord = 0.0;  ///< chordError of its faces
+};
+
+template <class T>
+void sortUnique(std::vector<T>& v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
+
+Neighbourhood neighbourhoodOf(const QuadMesh& mesh, const opt::Topology& t, std::uint32_t face) {
+  Neighbourhood n;
+  const Face& corners = mesh.faces[face];
+  for (int k = 0; k < cornerCount(corners); ++k)
+    for (const std::uint32_t* f = t.facesBegin(corners[std::size_t(k)]);
+         f != t.facesEnd(corners[std::size_t(k)]); ++f)
+      for (int j = 0; j < cornerCount(mesh.faces[*f]); ++j)
+        n.searched.push_back(mesh.faces[*f][std::size_t(j)]);
+  sortUnique(n.searched);
+  for (const CornerIndex v : n.searched)
+    n.faces.insert(n.faces.end(), t.facesBegin(v), t.facesEnd(v));
+  sortUnique(n.faces);
+  for (const std::uint32_t f : n.faces)
+    for (int j = 0; j < cornerCount(mesh.faces[f]); ++j)
+      n.allPoints.push_back(mesh.faces[f][std::size_t(j)]);
+  sortUnique(n.allPoints);
+  return n;
+}
+
+/// Whether v may move in a search: Free inside the surface, or on a Boundary or Feature curve.
+bool movable(const QuadMesh& mesh, const opt::Topology& t, CornerIndex v) {
+  const PointRole role = opt::roleOf(mesh, v);
+  return (role == PointRole::Free && !t.boundary[v]) || role == PointRole::Boundary ||
+         role == PointRole::Feature;
+}
+
+/// How far the faces of `mesh` listed in `faces` stray from the original: the largest distance
+/// from it of a face's centre or of the middle of one of its edges.
+template <class FaceList>
+double chordError(const QuadMesh& mesh, const FaceList& faces, const ReferenceSurface& original) {
+  double largest = 0.0;
+  for (const Face& face : faces) {
+    const int n = cornerCount(face);
+    Vec3 centre{0.0, 0.0, 0.0};
+    for (int k = 0; k < n; ++k) {
+      const Vec3& p = mesh.points[face[std::size_t(k)]];
+      const Vec3& q = mesh.points[face[std::size_t((k + 1) % n)]];
+      centre = centre + p * (1.0 / n);
+      largest = std::max(largest, original.closestPoint((p + q) * 0.5).distance);
+    }
+    largest = std::max(largest, original.closestPoint(centre).distance);
+  }
+  return largest;
+}
+
+opt::Score scoreOf(const QuadMesh& mesh, const QualitySettings& settings) {
+  opt::Score score;
+  for (const Face& face : mesh.faces) score += opt::faceScore(mesh, face, settings);
+  return score;
+}
+
+/// The neighbourhood after `edit`, as its own mesh, with its searched points moved by up to
+/// `sweeps` rounds of pattern searches (in ascending order, until a round moves none).
+Trial tryEdit(const QuadMesh& mesh, const opt::Topology& t, const Neighbourhood& n,
+              const Edit& edit, const ReferenceSurface& original, const QualitySettings& settings,
+              const std::vector<std::vector<Vec3>>& fixedOnCurve,
+              const std::vector<PolylineIndex>& curves, int sweeps) {
+  Trial trial;
+  std::vector<Face> faces;
+  for (const std::uint32_t f : n.faces)
+    if (std::find(edit.removed.begin(), edit.removed.end(), f) == edit.removed.end())
+      faces.push_back(mesh.faces[f]);
+  faces.insert(faces.end(), edit.added.begin(), edit.added.end());
+  if (edit.merge)
+    for (Face& face : faces)
+      for (int k = 0; k < cornerCount(face); ++k)
+        if (face[std::size_t(k)] == edit.merge->remove) face[std::size_t(k)] = edit.merge->keep;
+  trial.global = n.allPoints;
+  if (edit.merge)
+    trial.global.erase(std::find(trial.global.begin(), trial.global.end(), edit.merge->remove));
+  auto local = [&](CornerIndex v) {
+    return CornerIndex(std::lower_bound(trial.global.begin(), trial.global.end(), v) -
+                       trial.global.begin());
+  };
+  for (const CornerIndex v : trial.global) {
+    trial.mesh.points.push_back(mesh.points[v]);
+    if (!mesh.constraints.empty()) trial.mesh.constraints.push_back(mesh.constraints[v]);
+  }
+  if (edit.merge) trial.mesh.points[local(edit.merge->keep)] = edit.merge->position;
+  for (Face face : faces) {
+    for (int k = 0; k < cornerCount(face); ++k) face[std::size_t(k)] = local(face[std::size_t(k)]);
+    trial.mesh.faces.push_back(face);
+  }
+  const opt::Topology local_t = opt::buildTopology(trial.mesh);
+  std::vector<CornerIndex> searched;
+  for (const CornerIndex v : n.searched)
+    if ((!edit.merge || v != edit.merge->remove) && movable(mesh, t, v))
+      searched.push_back(local(v));
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    bool moved = false;
+    for (const CornerIndex v : searched)
+      moved = opt::improvePoint(trial.mesh, local_t, original, settings, fixedOnCurve, curves, v) ||
+              moved;
+    if (!moved) break;
+  }
+  trial.score = scoreOf(trial.mesh, settings);
+  trial.chord = chordError(trial.mesh, trial.mesh.faces, original);
+  return trial;
+}
+
+/// The edits tried at face f: every other cut of the polygon it makes with a neighbour across
+/// each of its edges (as rotateFailingEdges), and the collapse of each diagonal of a quad.
+std::vector<Edit> editsAt(const QuadMesh& mesh, const opt::Topology& t, std::uint32_t f,
+                          const ReferenceSurface& original) {
+  std::vector<Edit> edits;
+  const Face& face = mesh.faces[f];
+  const int n = cornerCount(face);
+  auto isFree = [&](CornerIndex v) { return opt::roleOf(mesh, v) == PointRole::Free; };
+  auto keepsFaces = [&](CornerIndex v) {  // v may lose a face
+    return t.faceCount(v) >= (t.boundary[v] ? 3u : 4u);
+  };
+  for (int k = 0; k < n; ++k) {
+    const CornerIndex a = face[std::size_t(k)], b = face[std::size_t((k + 1) % n)];
+    if ((!isFree(a) && !isFree(b)) || t.edgeFaces(a, b) != 2) continue;
+    if (!keepsFaces(a) || !keepsFaces(b)) continue;
+    std::uint32_t g = f;
+    for (const std::uint32_t* h = t.facesBegin(a); h != t.facesEnd(a); ++h) {
+      const Face& other = mesh.faces[*h];
+      const auto end = other.begin() + cornerCount(other);
+      if (*h != f && std::find(other.begin(), end, b) != end) g = *h;
+    }
+    if (g == f) continue;
+    const std::vector<CornerIndex> polygon = opt::polygonAroundEdge(face, mesh.faces[g], a, b);
+    if (polygon.empty()) continue;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+      if (polygon.size() != 5 && i >= polygon.size() / 2) continue;
+      const CornerIndex p = polygon[i], q = polygon[opt::diagonalEnd(polygon.size(), i)];
+      if (t.edgeFaces(p, q) > 0 || (!isFree(p) && !isFree(q))) continue;
+      const std::array<Face, 2> cut = opt::cutPolygon(polygon, i);
+      edits.push_back(Edit{{std::min(f, g), std::max(f, g)}, {cut[0], cut[1]}, std::nullopt});
+    }
+  }
+  if (n == 4)
+    for (int k = 0; k < 2; ++k) {
+      const CornerIndex u = face[std::size_t(k)], v = face[std::size_t(k + 2)];
+      if (!keepsFaces(face[std::size_t(k + 1)]) || !keepsFaces(face[std::size_t((k + 3) % 4)]))
+        continue;
+      if (!opt::mergeKeepsManifold(mesh, t, u, v)) continue;
+      std::optional<opt::Merge> merge = opt::mergeUnderConstraints(mesh, u, v);
+      if (!merge) continue;
+      if (opt::roleOf(mesh, merge->keep) == PointRole::Free)
+        merge->position = original.closestPoint(merge->position).point;
+      edits.push_back(Edit{{f}, {}, merge});
+    }
+  return edits;
+}
+
+/// Puts a trial's faces and positions into the mesh in place of its neighbourhood's: the faces
+/// that go are flagged in `deleted` (their slots reused first), the merged point left unused.
+void applyTrial(QuadMesh& mesh, const Neighbourhood& n, const Trial& trial,
+                std::vector<std::uint8_t>& deleted) {
+  for (CornerIndex v = 0; v < trial.global.size(); ++v)
+    mesh.points[trial.global[v]] = trial.mesh.points[v];
+  std::size_t k = 0;
+  for (const std::uint32_t f : n.faces) {
+    if (k < trial.mesh.faces.size()) {
+      Face face = trial.mesh.faces[k++];
+      for (int j = 0; j < cornerCount(face); ++j)
+        face[std::size_t(j)] = trial.global[face[std::size_t(j)]];
+      mesh.faces[f] = face;
+    } else {
+      deleted[f] = 1;
+    }
+  }
+  for (; k < trial.mesh.faces.size(); ++k) {
+    Face face = trial.mesh.faces[k];
+    for (int j = 0; j < cornerCount(face); ++j)
+      face[std::size_t(j)] = trial.global[face[std::size_t(j)]];
+    mesh.faces.push_back(face);
+    deleted.push_back(0);
+  }
+}
+
+}  // namespace
+
+std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& original,
+                                  const QualitySettings& settings, int maxRounds, int sweeps) {
+  if (original.empty())
+    throw std::invalid_argument("reconnectFailingFaces: the original surface is empty");
+  if (maxRounds < 0 || sweeps < 0)
+    throw std::invalid_argument("reconnectFailingFaces: negative round or sweep count");
+  if (!(settings.targetSize > 0.0))
+    throw std::invalid_argument("reconnectFailingFaces: targetSize must be > 0");
+  checkQualitySettings(settings);
+  opt::checkMesh(mesh);
+  const std::vector<std::vector<Vec3>> fixedOnCurve = opt::fixedPointsOnCurves(mesh);
+  const std::vector<PolylineIndex> curves = opt::indexCurves(mesh);
+  std::size_t changed = 0;
+  // Point indexes stay as they are until the end (merged points are left unused meanwhile), so
+  // that the stamps of the tries and of the changes per point hold across rounds.
+  std::map<Face, std::uint32_t> triedAt;
+  std::vector<std::uint32_t> changedAt(mesh.points.size(), 0);
+  std::uint32_t stamp = 0;
+  for (int round = 0; round < maxRounds; ++round) {
+    const opt::Topology t = opt::buildTopology(mesh);
+    const std::vector<ElementQuality> qualities = elementQualities(mesh);
+    std::vector<std::uint8_t> locked(mesh.points.size(), 0), deleted(mesh.faces.size(), 0);
+    const std::size_t faceCount = mesh.faces.size();
+    std::size_t roundChanged = 0;
+    for (std::uint32_t f = 0; f < faceCount; ++f) {
+      if (elementFailures(qualities[f], cornerCount(mesh.faces[f]), settings) == 0) continue;
+      const Neighbourhood n = neighbourhoodOf(mesh, t, f);
+      if (std::any_of(n.allPoints.begin(), n.allPoints.end(),
+                      [&](CornerIndex v) { return locked[v] != 0; }))
+        continue;
+      // A face tried in vain before, round a neighbourhood nothing has changed since, would be
+      // tried in vain again: what a try does depends only on the faces and positions there.
+      const auto tried = triedAt.find(mesh.faces[f]);
+      if (tried != triedAt.end() &&
+          std::all_of(n.allPoints.begin(), n.allPoints.end(),
+                      [&](CornerIndex v) { return changedAt[v] < tried->second; }))
+        continue;
+      triedAt[mesh.faces[f]] = ++stamp;
+      opt::Score before;
+      for (const std::uint32_t g : n.faces) before += opt::faceScore(mesh, mesh.faces[g], settings);
+      std::vector<Edit> edits{Edit{}};
+      const std::vector<Edit> others = editsAt(mesh, t, f, original);
+      edits.insert(edits.end(), others.begin(), others.end());
+      // The tries are independent: in parallel, the best chosen in edit order.
+      std::vector<Trial> trials(edits.size());
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, edits.size(), 1),
+                        [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t i = r.begin(); i < r.end(); ++i)
+                            trials[i] = tryEdit(mesh, t, n, edits[i], original, settings,
+                                                fixedOnCurve, curves, sweeps);
+                        });
+      // Only tries whose faces stay as close to the original as half the distance limit, or as
+      // the neighbourhood's faces were, take part.
+      std::vector<Face> present;
+      for (const std::uint32_t g : n.faces) present.push_back(mesh.faces[g]);
+      const double allowed = std::max(chordError(mesh, present, original),
+                                      0.5 * settings.maxDistanceFactor * settings.targetSize);
+      const Trial* best = nullptr;
+      for (const Trial& trial : trials)
+        if (trial.chord <= allowed && (!best || trial.score.betterThan(best->score))) best = &trial;
+      if (!best || !(best->score.failures < before.failures)) continue;
+      applyTrial(mesh, n, *best, deleted);
+      for (const CornerIndex v : n.allPoints) locked[v] = 1, changedAt[v] = stamp;
+      ++roundChanged;
+    }
+    if (roundChanged == 0) break;
+    changed += roundChanged;
+    opt::eraseFaces(mesh, deleted);
+  }
+  if (changed > 0) eraseUnusedPoints(mesh);
+  return changed;
+}
+
+}  // namespace voxremesh

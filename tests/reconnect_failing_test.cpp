@@ -1,0 +1,196 @@
+// reconnectFailingFaces on flat grids with planted connectivity defects that no point move can
+// repair: a pair of quads cut along the wrong diagonal and a split point (a thin quad between two
+// valence-3 points). The step removes the failures, keeps the surface (every point on the plane,
+// the fixed boundary where it was), the Euler characteristic and the orientation, and gives the
+// same mesh for one and two threads.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "voxremesh/optimize.h"
+#include "voxremesh/quality.h"
+
+namespace {
+
+using voxremesh::CornerIndex;
+using voxremesh::PointRole;
+using voxremesh::QuadMesh;
+using voxremesh::ReferenceSurface;
+
+/// An n x n grid of unit quads in the plane z = 0, its boundary points fixed (Corner).
+QuadMesh fixedBoundaryGrid(int n) {
+  QuadMesh mesh;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) mesh.points.push_back({double(i), double(j), 0.0});
+  auto id = [n](int i, int j) { return CornerIndex(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      mesh.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
+  mesh.constraints.resize(mesh.points.size());
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      if (i == 0 || j == 0 || i == n || j == n)
+        mesh.constraints[id(i, j)] = {PointRole::Corner, voxremesh::kNoCurve};
+  return mesh;
+}
+
+std::size_t failing(const QuadMesh& mesh) {
+  voxremesh::QualitySettings settings;
+  settings.targetSize = 1.0;
+  return voxremesh::assessQuality(mesh, settings).failingAny;
+}
+
+/// V - E + F over the points faces use; and whether every edge has one or two faces, a shared
+/// edge running opposite ways in its two faces (manifold and consistently oriented).
+std::pair<long, bool> eulerAndOriented(const QuadMesh& mesh) {
+  std::map<std::pair<CornerIndex, CornerIndex>, int> directed;
+  std::vector<std::uint8_t> used(mesh.points.size(), 0);
+  for (const auto& face : mesh.faces) {
+    const int n = voxremesh::cornerCount(face);
+    for (int k = 0; k < n; ++k) {
+      used[face[std::size_t(k)]] = 1;
+      ++directed[{face[std::size_t(k)], face[std::size_t((k + 1) % n)]}];
+    }
+  }
+  bool oriented = true;
+  long edges = 0;
+  for (const auto& [edge, count] : directed) {
+    oriented = oriented && count == 1;
+    if (edge.first < edge.second || !directed.count({edge.second, edge.first})) ++edges;
+  }
+  const long points = long(std::count(used.begin(), used.end(), 1));
+  return {points - edges + long(mesh.faces.size()), oriented};
+}
+
+void expectOnThePlaneWithTheBoundaryKept(const QuadMesh& mesh, const QuadMesh& start) {
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) {
+    EXPECT_EQ(mesh.points[v][2], 0.0) << v;
+    if (mesh.constraints[v].role == PointRole::Corner) {
+      EXPECT_EQ(mesh.points[v], start.points[v]) << v;
+    }
+  }
+}
+
+/// Two unit squares of a 4 x 4 grid cut along the wrong diagonal of the hexagon they make.
+QuadMesh badPair() {
+  QuadMesh mesh = fixedBoundaryGrid(4);
+  auto id = [](int i, int j) { return CornerIndex(j * 5 + i); };
+  for (auto& face : mesh.faces) {
+    if (face[0] == id(1, 1)) face = {id(1, 1), id(2, 1), id(3, 1), id(3, 2)};
+    if (face[0] == id(2, 1)) face = {id(3, 2), id(2, 2), id(1, 2), id(1, 1)};
+  }
+  return mesh;
+}
+
+/// A 6 x 6 grid whose point (3, 3) is split into two points 0.4 apart joined by a thin quad
+/// between (3, 2) and (3, 4).
+QuadMesh splitPoint() {
+  const int n = 6;
+  QuadMesh mesh = fixedBoundaryGrid(n);
+  auto id = [n](int i, int j) { return CornerIndex(j * (n + 1) + i); };
+  const CornerIndex left = id(3, 3);
+  mesh.points[left] = {2.8, 3.0, 0.0};
+  const CornerIndex right = CornerIndex(mesh.points.size());
+  mesh.points.push_back({3.2, 3.0, 0.0});
+  mesh.constraints.push_back({});
+  for (auto& face : mesh.faces)
+    if (face[0] == id(3, 2) || face[0] == id(3, 3))  // the two faces right of the point
+      std::replace(face.begin(), face.end(), left, right);
+  mesh.faces.push_back({left, id(3, 2), right, id(3, 4)});
+  return mesh;
+}
+
+TEST(ReconnectFailingFaces, RecutsAPairCutAlongTheWrongDiagonal) {
+  QuadMesh mesh = badPair();
+  const QuadMesh start = mesh;
+  const ReferenceSurface plane(fixedBoundaryGrid(4));
+  voxremesh::QualitySettings settings;
+  settings.targetSize = 1.0;
+  ASSERT_EQ(failing(mesh), 2u);
+  // Moving points alone leaves the pair failing: only another cut repairs it.
+  QuadMesh moved = mesh;
+  voxremesh::improveFailingElements(moved, plane, settings, 5);
+  ASSERT_GT(failing(moved), 0u);
+  EXPECT_EQ(voxremesh::reconnectFailingFaces(mesh, plane, settings), 1u);
+  EXPECT_EQ(failing(mesh), 0u);
+  EXPECT_EQ(mesh.faces.size(), start.faces.size());
+  EXPECT_EQ(mesh.points.size(), start.points.size());
+  EXPECT_EQ(eulerAndOriented(mesh), eulerAndOriented(start));
+  EXPECT_TRUE(eulerAndOriented(mesh).second);
+  expectOnThePlaneWithTheBoundaryKept(mesh, start);
+  // Nothing failing: nothing changes.
+  const QuadMesh passed = mesh;
+  EXPECT_EQ(voxremesh::reconnectFailingFaces(mesh, plane, settings), 0u);
+  EXPECT_EQ(mesh.faces, passed.faces);
+  EXPECT_EQ(mesh.points, passed.points);
+}
+
+TEST(ReconnectFailingFaces, CollapsesASplitPointBackIntoTheGrid) {
+  QuadMesh mesh = splitPoint();
+  const QuadMesh start = mesh;
+  const ReferenceSurface plane(fixedBoundaryGrid(6));
+  voxremesh::QualitySettings settings;
+  settings.targetSize = 1.0;
+  ASSERT_GT(failing(mesh), 0u);
+  EXPECT_GE(voxremesh::reconnectFailingFaces(mesh, plane, settings), 1u);
+  EXPECT_EQ(failing(mesh), 0u);
+  // The thin quad's diagonal collapsed: the grid's point and face counts again.
+  EXPECT_EQ(mesh.faces.size(), 36u);
+  EXPECT_EQ(mesh.points.size(), 49u);
+  EXPECT_EQ(eulerAndOriented(mesh), eulerAndOriented(start));
+  EXPECT_TRUE(eulerAndOriented(mesh).second);
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) EXPECT_EQ(mesh.points[v][2], 0.0) << v;
+}
+
+TEST(ReconnectFailingFaces, SameMeshForOneAndTwoThreads) {
+  QuadMesh start = splitPoint();
+  // Both defects at once, and the interior jittered.
+  for (std::size_t v = 0; v < start.points.size(); ++v)
+    if (start.constraints[v].role == PointRole::Free) start.points[v][0] += 0.07 * double(v % 3);
+  auto id = [](int i, int j) { return CornerIndex(j * 7 + i); };
+  for (auto& face : start.faces) {
+    if (face[0] == id(1, 4)) face = {id(1, 4), id(2, 4), id(3, 4), id(3, 5)};
+    if (face[0] == id(2, 4)) face = {id(3, 5), id(2, 5), id(1, 5), id(1, 4)};
+  }
+  const ReferenceSurface plane(fixedBoundaryGrid(6));
+  voxremesh::QualitySettings settings;
+  settings.targetSize = 1.0;
+  auto run = [&](int threads) {
+    tbb::global_control control(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+    QuadMesh mesh = start;
+    voxremesh::reconnectFailingFaces(mesh, plane, settings);
+    return mesh;
+  };
+  const QuadMesh one = run(1), two = run(2);
+  EXPECT_LT(failing(one), failing(start));
+  ASSERT_EQ(one.faces, two.faces);
+  ASSERT_EQ(one.points.size(), two.points.size());
+  EXPECT_EQ(
+      std::memcmp(one.points.data(), two.points.data(), one.points.size() * sizeof(one.points[0])),
+      0);
+}
+
+TEST(ReconnectFailingFaces, RefusesBadArguments) {
+  QuadMesh mesh = badPair();
+  const ReferenceSurface plane(fixedBoundaryGrid(4));
+  voxremesh::QualitySettings settings;
+  settings.targetSize = 1.0;
+  EXPECT_THROW(voxremesh::reconnectFailingFaces(mesh, plane, settings, -1), std::invalid_argument);
+  EXPECT_THROW(voxremesh::reconnectFailingFaces(mesh, plane, settings, 3, -1),
+               std::invalid_argument);
+  EXPECT_THROW(voxremesh::reconnectFailingFaces(mesh, ReferenceSurface(QuadMesh{}), settings),
+               std::invalid_argument);
+  settings.targetSize = 0.0;
+  EXPECT_THROW(voxremesh::reconnectFailingFaces(mesh, plane, settings), std::invalid_argument);
+  settings.targetSize = 1.0;
+  mesh.faces[0][1] = 999;  // a missing point
+  EXPECT_THROW(voxremesh::reconnectFailingFaces(mesh, plane, settings), std::invalid_argument);
+}
+
+}  // namespace
