@@ -92,7 +92,7 @@ std::vector<std::vector<Vec3>> fixedPointsOnCurves(const QuadMesh& mesh) {
 bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& original,
                   const QualitySettings& settings,
                   const std::vector<std::vector<Vec3>>& fixedOnCurve,
-                  const std::vector<PolylineIndex>& curves, CornerIndex v) {
+                  const std::vector<PolylineIndex>& curves, CornerIndex v, double smallestStep) {
   const Vec3 start = mesh.points[v];
   const bool free = roleOf(mesh, v) == PointRole::Free;
   Vec3 normal;
@@ -128,7 +128,7 @@ bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& ori
   Score best = scoreAround(mesh, t, v, settings);
   if (best.failures == 0 && best.penalty == 0.0) return false;
   Vec3 position = start;
-  for (double step = 0.25 * edge; step > 0.01 * edge; step *= 0.5) {
+  for (double step = 0.25 * edge; step > smallestStep * edge; step *= 0.5) {
     bool improved = true;
     for (int round = 0; improved && round < 8; ++round) {
       improved = false;

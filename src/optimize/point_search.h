@@ -19,10 +19,11 @@ Score scoreAround(const QuadMesh& mesh, const Topology& t, CornerIndex v,
 /// it. Preconditions: checkMesh(mesh) holds.
 std::vector<std::vector<Vec3>> fixedPointsOnCurves(const QuadMesh& mesh);
 
-/// The pattern search of one point: steps of a quarter of its mean edge length, halved down to a
-/// hundredth, in 8 directions of the plane normal to the sum of its faces' normals; a Free point
-/// is projected on `original`, a curve point kept on its curve, and a step is taken when the
-/// faces around the point score better (Score::betterThan). Returns whether the point moved.
+/// The pattern search of one point: steps of a quarter of its mean edge length, halved while
+/// above `smallestStep` (a fraction of that length, > 0), in 8 directions of the plane normal to
+/// the sum of its faces' normals; a Free point is projected on `original`, a curve point kept on
+/// its curve, and a step is taken when the faces around the point score better (Score::betterThan).
+/// Returns whether the point moved.
 /// @param mesh          the mesh; `t` its topology; v a point of it
 /// @param fixedOnCurve  fixedPointsOnCurves of the mesh whose curves the constraints name: a curve
 ///                      point never comes within a twentieth of an edge of a fixed point of its
@@ -32,6 +33,7 @@ std::vector<std::vector<Vec3>> fixedPointsOnCurves(const QuadMesh& mesh);
 bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& original,
                   const QualitySettings& settings,
                   const std::vector<std::vector<Vec3>>& fixedOnCurve,
-                  const std::vector<PolylineIndex>& curves, CornerIndex v);
+                  const std::vector<PolylineIndex>& curves, CornerIndex v,
+                  double smallestStep = 0.01);
 
 }  // namespace voxremesh::opt

@@ -22,6 +22,11 @@ using opt::Face;
 using opt::Vec3;
 using namespace geom;  // NOLINT: the vector operators
 
+/// The pattern searches of a try stop at steps of a sixteenth of an edge (improveFailingElements
+/// goes on to a sixty-fourth): on the bracket at 4.5 mm the same failing share (0.58 against 0.63
+/// %) at half the time of the step; on the wheel 5.75 against 5.71 % (bench_optimize).
+constexpr double kTrialSmallestStep = 0.06;
+
 /// The faces round the points round a failing face: what a change of connectivity at the face,
 /// and the searches of the points of its faces' neighbours, can alter.
 struct Neighbourhood {
@@ -139,11 +144,31 @@ Trial tryEdit(const QuadMesh& mesh, const opt::Topology& t, const Neighbourhood&
   for (const CornerIndex v : n.searched)
     if ((!edit.merge || v != edit.merge->remove) && movable(mesh, t, v))
       searched.push_back(local(v));
+  // A search that left its point in place would do so again until a point of its faces moves
+  // (as in improveFailingElements): such points are skipped, with the same result.
+  std::vector<std::uint32_t> movedAt(trial.global.size(), 0), stayedAt(trial.global.size(), 0);
+  std::uint32_t stamp = 0;
+  auto unchangedSinceSearch = [&](CornerIndex v) {
+    if (stayedAt[v] == 0) return false;
+    for (const std::uint32_t* f = local_t.facesBegin(v); f != local_t.facesEnd(v); ++f)
+      for (int k = 0; k < cornerCount(trial.mesh.faces[*f]); ++k)
+        if (movedAt[trial.mesh.faces[*f][std::size_t(k)]] >= stayedAt[v]) return false;
+    return true;
+  };
   for (int sweep = 0; sweep < sweeps; ++sweep) {
     bool moved = false;
-    for (const CornerIndex v : searched)
-      moved = opt::improvePoint(trial.mesh, local_t, original, settings, fixedOnCurve, curves, v) ||
-              moved;
+    for (const CornerIndex v : searched) {
+      if (unchangedSinceSearch(v)) continue;
+      ++stamp;
+      if (opt::improvePoint(trial.mesh, local_t, original, settings, fixedOnCurve, curves, v,
+                            kTrialSmallestStep)) {
+        movedAt[v] = stamp;
+        stayedAt[v] = 0;
+        moved = true;
+      } else {
+        stayedAt[v] = stamp;
+      }
+    }
     if (!moved) break;
   }
   trial.score = scoreOf(trial.mesh, settings);
