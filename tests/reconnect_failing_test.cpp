@@ -40,10 +40,15 @@ QuadMesh fixedBoundaryGrid(int n) {
   return mesh;
 }
 
-std::size_t failing(const QuadMesh& mesh) {
+/// The default criteria for the unit grids.
+voxremesh::QualitySettings unitCriteria() {
   voxremesh::QualitySettings settings;
   settings.targetSize = 1.0;
-  return voxremesh::assessQuality(mesh, settings).failingAny;
+  return settings;
+}
+
+std::size_t failing(const QuadMesh& mesh) {
+  return voxremesh::assessQuality(mesh, unitCriteria()).failingAny;
 }
 
 /// V - E + F over the points faces use; and whether every edge has one or two faces, a shared
@@ -110,8 +115,7 @@ TEST(ReconnectFailingFaces, RecutsAPairCutAlongTheWrongDiagonal) {
   QuadMesh mesh = badPair();
   const QuadMesh start = mesh;
   const ReferenceSurface plane(fixedBoundaryGrid(4));
-  voxremesh::QualitySettings settings;
-  settings.targetSize = 1.0;
+  voxremesh::QualitySettings settings = unitCriteria();
   ASSERT_EQ(failing(mesh), 2u);
   // Moving points alone leaves the pair failing: only another cut repairs it.
   QuadMesh moved = mesh;
@@ -135,8 +139,7 @@ TEST(ReconnectFailingFaces, CollapsesASplitPointBackIntoTheGrid) {
   QuadMesh mesh = splitPoint();
   const QuadMesh start = mesh;
   const ReferenceSurface plane(fixedBoundaryGrid(6));
-  voxremesh::QualitySettings settings;
-  settings.targetSize = 1.0;
+  voxremesh::QualitySettings settings = unitCriteria();
   ASSERT_GT(failing(mesh), 0u);
   EXPECT_GE(voxremesh::reconnectFailingFaces(mesh, plane, settings), 1u);
   EXPECT_EQ(failing(mesh), 0u);
@@ -159,8 +162,7 @@ TEST(ReconnectFailingFaces, SameMeshForOneAndTwoThreads) {
     if (face[0] == id(2, 4)) face = {id(3, 5), id(2, 5), id(1, 5), id(1, 4)};
   }
   const ReferenceSurface plane(fixedBoundaryGrid(6));
-  voxremesh::QualitySettings settings;
-  settings.targetSize = 1.0;
+  voxremesh::QualitySettings settings = unitCriteria();
   auto run = [&](int threads) {
     tbb::global_control control(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
     QuadMesh mesh = start;
@@ -179,8 +181,7 @@ TEST(ReconnectFailingFaces, SameMeshForOneAndTwoThreads) {
 TEST(ReconnectFailingFaces, RefusesBadArguments) {
   QuadMesh mesh = badPair();
   const ReferenceSurface plane(fixedBoundaryGrid(4));
-  voxremesh::QualitySettings settings;
-  settings.targetSize = 1.0;
+  voxremesh::QualitySettings settings = unitCriteria();
   EXPECT_THROW(voxremesh::reconnectFailingFaces(mesh, plane, settings, -1), std::invalid_argument);
   EXPECT_THROW(voxremesh::reconnectFailingFaces(mesh, plane, settings, 3, -1),
                std::invalid_argument);
