@@ -250,6 +250,8 @@ const std::vector<ActionDef> kActions = {
       {"merge", OptionType::Flag, "1", "merge triangle pairs into quads"},
       {"folded", OptionType::Flag, "1", "collapse faces folded along a curve"},
       {"short", OptionType::Number, "0", "collapse edges shorter than this x size (0: none)"},
+      {"reconnect", OptionType::Integer, "8",
+       "rounds of the reconnection of faces still failing (0: none)"},
       {"original", OptionType::Text, "",
        "a deck holding the original part (default: the part the mesh was made from)"}},
      detail::runOptimize,

@@ -79,6 +79,7 @@ void runOptimize(ChainState& state, const ActionCall& call) {
   settings.mergeTriangles = call.flag("merge");
   settings.collapseFoldedCurves = call.flag("folded");
   settings.shortEdgeFactor = call.number("short");
+  settings.reconnectRounds = count(call, "reconnect");
   std::optional<QuadMesh> original = originalOfMesh(state, source, call);
   if (!original)
     throw std::runtime_error("no original surface for part " + std::to_string(source.mesh.part) +
@@ -95,7 +96,8 @@ void runOptimize(ChainState& state, const ActionCall& call) {
   optimizeQuadMesh(item.mesh, surface, settings, &stats);
   say(state, "optimised part " + std::to_string(item.mesh.part) + ": " + meshCounts(item.mesh) +
                  " (" + std::to_string(stats.rhombicCollapsed) + " rhombic quads collapsed, " +
-                 std::to_string(stats.trianglesMerged) + " triangle pairs merged, warped quads " +
+                 std::to_string(stats.trianglesMerged) + " triangle pairs merged, " +
+                 std::to_string(stats.reconnected) + " neighbourhoods reconnected, warped quads " +
                  std::to_string(stats.warping.warpedBefore) + " -> " +
                  std::to_string(stats.warping.warpedAfter) + ")\n");
   state.stack.push_back(std::move(item));
