@@ -197,10 +197,14 @@ std::size_t splitInvertedQuads(QuadMesh& mesh);
 /// cut of the polygon it makes with a neighbour across one of its edges (as rotateFailingEdges,
 /// under the same rules) and, for a quad, the collapse of either diagonal (under the constraint
 /// and manifold rules of the rhombic collapse). Each try is followed by up to `sweeps` rounds of
-/// the pattern search of improveFailingElements over the points of the faces round the face's
-/// corners; the try whose neighbourhood then scores best is kept when it fails fewer criteria
-/// than the neighbourhood did. Neighbourhoods changed in a round do not overlap; rounds repeat
-/// until none changes or `maxRounds` is reached. Serial, deterministic.
+/// the pattern search of improveFailingElements (down to steps of a sixteenth of an edge) over
+/// the points of the faces round the face's corners. Only tries whose faces stay as close to the
+/// original as half the distance limit (settings.maxDistanceFactor x targetSize), or as the
+/// neighbourhood's faces were, take part (measured at face centres and edge midpoints); the one
+/// whose neighbourhood then scores best is kept when it fails fewer criteria than the
+/// neighbourhood did. Neighbourhoods changed in a round do not overlap; rounds repeat until none
+/// changes or `maxRounds` is reached. The tries of one face run in parallel and are chosen in
+/// order: the result does not depend on the thread count.
 /// @return the number of neighbourhoods changed
 /// Throws std::invalid_argument for an empty surface, negative rounds or sweeps,
 /// settings.targetSize <= 0 or a bad mesh; SettingError for bad settings.
