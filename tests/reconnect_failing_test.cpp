@@ -136,12 +136,12 @@ TEST(ReconnectFailingFaces, RecutsAPairCutAlongTheWrongDiagonal) {
 }
 
 TEST(ReconnectFailingFaces, CollapsesASplitPointBackIntoTheGrid) {
-  QuadMesh mesh = splitPoint();
-  const QuadMesh start = mesh;
-  const ReferenceSurface plane(fixedBoundaryGrid(6));
-  voxremesh::QualitySettings settings = unitCriteria();
-  ASSERT_GT(failing(mesh), 0u);
-  EXPECT_GE(voxremesh::reconnectFailingFaces(mesh, plane, settings), 1u);
+  const QuadMesh start = splitPoint();
+  ASSERT_GT(failing(start), 0u);
+  QuadMesh mesh = start;
+  EXPECT_GE(voxremesh::reconnectFailingFaces(mesh, ReferenceSurface(fixedBoundaryGrid(6)),
+                                             unitCriteria()),
+            1u);
   EXPECT_EQ(failing(mesh), 0u);
   // The thin quad's diagonal collapsed: the grid's point and face counts again.
   EXPECT_EQ(mesh.faces.size(), 36u);
