@@ -92,7 +92,8 @@ std::vector<std::vector<Vec3>> fixedPointsOnCurves(const QuadMesh& mesh) {
 bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& original,
                   const QualitySettings& settings,
                   const std::vector<std::vector<Vec3>>& fixedOnCurve,
-                  const std::vector<PolylineIndex>& curves, CornerIndex v, double smallestStep) {
+                  const std::vector<PolylineIndex>& curves, CornerIndex v, double smallestStep,
+                  int movesPerStep) {
   const Vec3 start = mesh.points[v];
   const bool free = roleOf(mesh, v) == PointRole::Free;
   Vec3 normal;
@@ -130,7 +131,7 @@ bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& ori
   Vec3 position = start;
   for (double step = 0.25 * edge; step > smallestStep * edge; step *= 0.5) {
     bool improved = true;
-    for (int round = 0; improved && round < 8; ++round) {
+    for (int round = 0; improved && round < movesPerStep; ++round) {
       improved = false;
       for (const Vec3& direction : directions) {
         mesh.points[v] = place(position + direction * step);

@@ -20,7 +20,8 @@ Score scoreAround(const QuadMesh& mesh, const Topology& t, CornerIndex v,
 std::vector<std::vector<Vec3>> fixedPointsOnCurves(const QuadMesh& mesh);
 
 /// The pattern search of one point: steps of a quarter of its mean edge length, halved while
-/// above `smallestStep` (a fraction of that length, > 0), in 8 directions of the plane normal to
+/// above `smallestStep` (a fraction of that length, > 0), at most `movesPerStep` (>= 1) moves
+/// per step length, in 8 directions of the plane normal to
 /// the sum of its faces' normals; a Free point is projected on `original`, a curve point kept on
 /// its curve, and a step is taken when the faces around the point score better (Score::betterThan).
 /// Returns whether the point moved.
@@ -34,6 +35,6 @@ bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& ori
                   const QualitySettings& settings,
                   const std::vector<std::vector<Vec3>>& fixedOnCurve,
                   const std::vector<PolylineIndex>& curves, CornerIndex v,
-                  double smallestStep = 0.01);
+                  double smallestStep = 0.01, int movesPerStep = 8);
 
 }  // namespace voxremesh::opt
