@@ -30,9 +30,7 @@ std::vector<CornerIndex> pointsOfFailingFaces(const QuadMesh& mesh, const opt::T
     if (elementFailures(qualities[f], cornerCount(face), settings) == 0) continue;
     for (int k = 0; k < cornerCount(face); ++k) {
       const CornerIndex v = face[std::size_t(k)];
-      const PointRole role = opt::roleOf(mesh, v);
-      const bool free = role == PointRole::Free && !t.boundary[v];
-      if (free || role == PointRole::Boundary || role == PointRole::Feature) points.push_back(v);
+      if (opt::searchable(mesh, t, v)) points.push_back(v);
     }
   }
   std::sort(points.begin(), points.end());

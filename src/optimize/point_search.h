@@ -11,6 +11,14 @@
 
 namespace voxremesh::opt {
 
+/// Whether the pattern search may move v: a Free point inside the surface (not on an edge with one
+/// face), or a point of a Boundary or Feature curve (Corners and Junction points stay).
+inline bool searchable(const QuadMesh& mesh, const Topology& t, CornerIndex v) {
+  const PointRole role = roleOf(mesh, v);
+  return (role == PointRole::Free && !t.boundary[v]) || role == PointRole::Boundary ||
+         role == PointRole::Feature;
+}
+
 /// The summed score of the faces around v (topology `t` of `mesh`).
 Score scoreAround(const QuadMesh& mesh, const Topology& t, CornerIndex v,
                   const QualitySettings& settings);

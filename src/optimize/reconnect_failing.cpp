@@ -22,13 +22,12 @@ using opt::Face;
 using opt::Vec3;
 using namespace geom;  // NOLINT: the vector operators
 
-/// The pattern searches of a try stop at steps of a sixteenth of an edge (improveFailingElements
-/// goes on to a sixty-fourth): on the bracket at 4.5 mm the same failing share (0.58 against 0.63
-/// %) at half the time of the step; on the wheel 5.75 against 5.71 % (bench_optimize).
+/// The pattern searches of a try are shorter than improveFailingElements': they stop at steps of
+/// a sixteenth of an edge (not a sixty-fourth) and make at most 3 moves per step length (not 8).
+/// Bracket (bench_optimize): 0.53 % failing at 4.5 mm, 0.77 % at 5 mm, 1.07 % at 4 mm, against
+/// 0.63, 1.01 and 0.84 % with the full searches at about twice the time of the step; wheel
+/// (remesh) 3.66 % against 3.63 %.
 constexpr double kTrialSmallestStep = 0.06;
-/// ... and make at most 3 moves per step length (8 in improveFailingElements): bracket 0.53 %
-/// failing at 4.5 mm, 0.77 % at 5 mm, 1.07 % at 4 mm (0.58, 0.95, 1.03 with 8), the wheel
-/// 3.66 % (3.63), in about the same time.
 constexpr int kTrialMovesPerStep = 3;
 
 /// The faces round the points round a failing face: what a change of connectivity at the face,
@@ -77,13 +76,6 @@ Neighbourhood neighbourhoodOf(const QuadMesh& mesh, const opt::Topology& t, std:
       n.allPoints.push_back(mesh.faces[f][std::size_t(j)]);
   sortUnique(n.allPoints);
   return n;
-}
-
-/// Whether v may move in a search: Free inside the surface, or on a Boundary or Feature curve.
-bool movable(const QuadMesh& mesh, const opt::Topology& t, CornerIndex v) {
-  const PointRole role = opt::roleOf(mesh, v);
-  return (role == PointRole::Free && !t.boundary[v]) || role == PointRole::Boundary ||
-         role == PointRole::Feature;
 }
 
 /// How far the faces of `mesh` listed in `faces` stray from the original: the largest distance
@@ -146,7 +138,7 @@ Trial tryEdit(const QuadMesh& mesh, const opt::Topology& t, const Neighbourhood&
   const opt::Topology local_t = opt::buildTopology(trial.mesh);
   std::vector<CornerIndex> searched;
   for (const CornerIndex v : n.searched)
-    if ((!edit.merge || v != edit.merge->remove) && movable(mesh, t, v))
+    if ((!edit.merge || v != edit.merge->remove) && opt::searchable(mesh, t, v))
       searched.push_back(local(v));
   // A search that left its point in place would do so again until a point of its faces moves
   // (as in improveFailingElements): such points are skipped, with the same result.
