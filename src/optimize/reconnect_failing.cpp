@@ -80,8 +80,8 @@ Neighbourhood neighbourhoodOf(const QuadMesh& mesh, const opt::Topology& t, std:
 
 /// How far the faces of `mesh` listed in `faces` stray from the original: the largest distance
 /// from it of a face's centre or of the middle of one of its edges.
-template <class FaceList>
-double chordError(const QuadMesh& mesh, const FaceList& faces, const ReferenceSurface& original) {
+double chordError(const QuadMesh& mesh, const std::vector<Face>& faces,
+                  const ReferenceSurface& original) {
   double largest = 0.0;
   for (const Face& face : faces) {
     const int n = cornerCount(face);
