@@ -11,16 +11,20 @@ using namespace geom;  // NOLINT: the vector operators
 
 namespace {
 
-/// Whether the summed score of the faces around v is better than `best` (Score::betterThan),
-/// summed in the order of scoreAround and given up as soon as the part summed cannot be better
-/// (failures and penalties are never negative). The summed score goes to `score` when better.
-bool scoresBetterAround(const QuadMesh& mesh, const Topology& t, CornerIndex v,
-                        const QualitySettings& settings, const Score& best, Score& score) {
+/// Whether the summed score of the faces `faces` is better than `best` (Score::betterThan),
+/// given up as soon as the part summed cannot be better (failures and penalties are never
+/// negative). The summed score goes to `score` when better; otherwise the face whose score gave it
+/// up moves to the front of `faces`, as the one most likely to give up the next try.
+bool scoresBetter(const QuadMesh& mesh, std::vector<std::uint32_t>& faces,
+                  const QualitySettings& settings, const Score& best, Score& score) {
   Score sum;
-  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f) {
-    sum += faceScore(mesh, mesh.faces[*f], settings);
-    if (sum.failures > best.failures || (sum.failures == best.failures && !sum.betterThan(best)))
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    sum += faceScore(mesh, mesh.faces[faces[i]], settings);
+    if (sum.failures > best.failures || (sum.failures == best.failures && !sum.betterThan(best))) {
+      std::rotate(faces.begin(), faces.begin() + std::ptrdiff_t(i),
+                  faces.begin() + std::ptrdiff_t(i) + 1);
       return false;
+    }
   }
   score = sum;
   return true;
@@ -126,7 +130,20 @@ bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& ori
       if (distance(q, c) < 0.05 * edge) return true;
     return false;
   };
-  Score best = scoreAround(mesh, t, v, settings);
+  // The faces round v, the worst first: the likeliest to make a try give up early (the order
+  // changes which faces are scored, not whether a try is taken).
+  std::vector<std::pair<Score, std::uint32_t>> scored;
+  Score best;
+  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f) {
+    scored.emplace_back(faceScore(mesh, mesh.faces[*f], settings), *f);
+    best += scored.back().first;
+  }
+  std::stable_sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) {
+    return a.first.failures != b.first.failures ? a.first.failures > b.first.failures
+                                                : a.first.penalty > b.first.penalty;
+  });
+  std::vector<std::uint32_t> faces;
+  for (const auto& entry : scored) faces.push_back(entry.second);
   if (best.failures == 0 && best.penalty == 0.0) return false;
   Vec3 position = start;
   for (double step = 0.25 * edge; step > smallestStep * edge; step *= 0.5) {
@@ -137,7 +154,7 @@ bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& ori
         mesh.points[v] = place(position + direction * step);
         if (onFixedPoint(mesh.points[v])) continue;
         Score score;
-        if (scoresBetterAround(mesh, t, v, settings, best, score)) {
+        if (scoresBetter(mesh, faces, settings, best, score)) {
           best = score;
           position = mesh.points[v];
           improved = true;
