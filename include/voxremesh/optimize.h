@@ -196,9 +196,10 @@ std::size_t splitInvertedQuads(QuadMesh& mesh);
 /// its corners) is tried as it is and after each change of connectivity at the face: every other
 /// cut of the polygon it makes with a neighbour across one of its edges (as rotateFailingEdges,
 /// under the same rules) and, for a quad, the collapse of either diagonal (under the constraint
-/// and manifold rules of the rhombic collapse). Each try is followed by up to `sweeps` rounds of
-/// the pattern search of improveFailingElements (down to steps of a sixteenth of an edge) over
-/// the points of the faces round the face's corners. Only tries whose faces stay as close to the
+/// and manifold rules of the rhombic collapse). Each try is followed by one round of the pattern
+/// search of improveFailingElements (down to steps of a sixteenth of an edge) over the points of
+/// the faces round the face's corners; the three tries that then score best go on to up to
+/// `sweeps` rounds in all, the others are dropped. Only tries whose faces stay as close to the
 /// original as half the distance limit (settings.maxDistanceFactor x targetSize), or as the
 /// neighbourhood's faces were, take part (measured at face centres and edge midpoints); the one
 /// whose neighbourhood then scores best is kept when it fails fewer criteria than the
