@@ -6,6 +6,7 @@
 #include <string>
 
 #include "geometry/vec3.h"
+#include "quality/windowed_quality.h"
 #include "voxremesh/quality.h"
 
 namespace voxremesh {
@@ -15,6 +16,9 @@ using namespace geom;  // NOLINT: the vector operators
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+/// How far inside a window's key an angle's key must lie to be taken as inside it: about 1e-7
+/// degrees, far above the rounding of keys and of atan2 (about 1e-13 degrees).
+constexpr double kKeyMargin = 1e-9;
 
 /// The angle between two vectors a, b as angleDeg's operands s = |a x b| and c = a . b: ordered by
 /// a pseudo-angle, turned into degrees (atan2, the costly part) only for the angle that is kept.
@@ -47,11 +51,6 @@ struct Angle {
   static constexpr double kDegrees = 57.29577951308232;  // as angleDeg
 };
 
-/// The angle in degrees between two lines, folded to 0..90.
-double lineAngleDeg(const Vec3& a, const Vec3& b) {
-  return Angle(a, b).lineDegrees();
-}
-
 /// Angle between the normals of triangles (a,b,c) and (a,c,d); 0 when one has no area.
 Angle splitAngle(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
   const Vec3 n1 = cross(b - a, c - a), n2 = cross(c - a, d - a);
@@ -78,8 +77,8 @@ struct Edges {
 
 /// Fills the edge-based metrics shared by quads and triangles: aspect ratio, interior angles
 /// (reflex-corrected against `normal`), longest edge.
-void edgeMetrics(const Edges& edges, int n, const Vec3& normal, ElementQuality& q,
-                 double& longest) {
+void edgeMetrics(const Edges& edges, int n, const Vec3& normal, const AngleWindow* window,
+                 ElementQuality& q, double& longest) {
   const auto count = static_cast<std::size_t>(n);
   double shortest = kInfinity;
   longest = 0.0;
@@ -108,8 +107,11 @@ void edgeMetrics(const Edges& edges, int n, const Vec3& normal, ElementQuality& 
       if (key[i] < key[smallest]) smallest = i;
       if (key[i] > key[largest]) largest = i;
     }
-    q.minAngleDeg = degrees(smallest);
-    q.maxAngleDeg = degrees(largest);
+    q.minAngleDeg = window && key[smallest] >= window->minAngleKey + kKeyMargin
+                        ? window->minAngleDeg
+                        : degrees(smallest);
+    q.maxAngleDeg = window && key[largest] <= window->maxAngleKey - kKeyMargin ? window->maxAngleDeg
+                                                                               : degrees(largest);
   } else {
     // Not finite: every angle, NaN ones left out by std::min/max.
     q.minAngleDeg = kInfinity;
@@ -122,12 +124,12 @@ void edgeMetrics(const Edges& edges, int n, const Vec3& normal, ElementQuality& 
   q.aspectRatio = shortest > 0.0 ? longest / shortest : kInfinity;
 }
 
-ElementQuality triangleQuality(const std::array<Vec3, 4>& p) {
+ElementQuality triangleQuality(const std::array<Vec3, 4>& p, const AngleWindow* window) {
   ElementQuality q;
   const Edges edges(p, 3);
   const Vec3 normal = cross(p[1] - p[0], p[2] - p[0]);
   double longest = 0.0;
-  edgeMetrics(edges, 3, normal, q, longest);
+  edgeMetrics(edges, 3, normal, window, q, longest);
   // Skew: per corner, the median against the line joining the adjacent midsides.
   std::array<Angle, 3> line;
   std::array<double, 3> key{};
@@ -143,7 +145,9 @@ ElementQuality triangleQuality(const std::array<Vec3, 4>& p) {
   double smallest = 90.0;
   if (std::isfinite(key[0]) && std::isfinite(key[1]) && std::isfinite(key[2])) {
     const std::size_t i = key[1] < key[0] ? (key[2] < key[1] ? 2 : 1) : (key[2] < key[0] ? 2 : 0);
-    smallest = std::min(smallest, line[i].lineDegrees());
+    smallest = window && key[i] >= window->minLineKey + kKeyMargin
+                   ? 90.0 - window->maxSkewDeg
+                   : std::min(smallest, line[i].lineDegrees());
   } else {
     for (const Angle& angle : line) smallest = std::min(smallest, angle.lineDegrees());
   }
@@ -162,22 +166,30 @@ ElementQuality triangleQuality(const std::array<Vec3, 4>& p) {
   return q;
 }
 
-ElementQuality quadQuality(const std::array<Vec3, 4>& p) {
+ElementQuality quadQuality(const std::array<Vec3, 4>& p, const AngleWindow* window,
+                           bool gaussJacobian) {
   ElementQuality q;
   const Edges edges(p, 4);
   const Vec3 diagonalNormal = cross(p[2] - p[0], p[3] - p[1]);
   double longest = 0.0;
-  edgeMetrics(edges, 4, diagonalNormal, q, longest);
+  edgeMetrics(edges, 4, diagonalNormal, window, q, longest);
   const Angle split02 = splitAngle(p[0], p[1], p[2], p[3]);
   const Angle split13 = splitAngle(p[1], p[2], p[3], p[0]);
   const double key02 = split02.key(), key13 = split13.key();
-  q.warpingDeg = std::isfinite(key02) && std::isfinite(key13)
-                     ? (key02 < key13 ? split13 : split02).degrees()
-                     : std::max(split02.degrees(), split13.degrees());
+  if (!std::isfinite(key02) || !std::isfinite(key13))
+    q.warpingDeg = std::max(split02.degrees(), split13.degrees());
+  else if (window && std::max(key02, key13) <= window->maxWarpingKey - kKeyMargin)
+    q.warpingDeg = window->maxWarpingDeg;
+  else
+    q.warpingDeg = (key02 < key13 ? split13 : split02).degrees();
 
   const Vec3 m01 = (p[0] + p[1]) * 0.5, m12 = (p[1] + p[2]) * 0.5;
   const Vec3 m23 = (p[2] + p[3]) * 0.5, m30 = (p[3] + p[0]) * 0.5;
-  q.skewDeg = 90.0 - lineAngleDeg(m12 - m30, m23 - m01);
+  const Angle midLines(m12 - m30, m23 - m01);
+  const double midLinesKey = midLines.lineKey();
+  q.skewDeg = window && std::isfinite(midLinesKey) && midLinesKey >= window->minLineKey + kKeyMargin
+                  ? window->maxSkewDeg
+                  : 90.0 - midLines.lineDegrees();
 
   // Corner Jacobians on the plane of the averaged corner normals.
   const std::array<Vec3, 4>& cornerNormal = edges.cornerNormal;
@@ -194,17 +206,19 @@ ElementQuality quadQuality(const std::array<Vec3, 4>& p) {
   }
   q.jacobianRatio = maxJ > 0.0 ? minJ / maxJ : -1.0;
   // The same at the 2 x 2 Gauss points of the bilinear map.
-  const double g = 1.0 / std::sqrt(3.0);
-  double minG = kInfinity, maxG = -kInfinity;
-  for (const double xi : {-g, g})
-    for (const double eta : {-g, g}) {
-      const Vec3 dXi = ((p[1] - p[0]) * (1.0 - eta) + (p[2] - p[3]) * (1.0 + eta)) * 0.25;
-      const Vec3 dEta = ((p[3] - p[0]) * (1.0 - xi) + (p[2] - p[1]) * (1.0 + xi)) * 0.25;
-      const double j = dot(cross(dXi, dEta), n);
-      minG = std::min(minG, j);
-      maxG = std::max(maxG, j);
-    }
-  q.jacobianRatioGauss = maxG > 0.0 ? minG / maxG : -1.0;
+  if (gaussJacobian) {
+    const double g = 1.0 / std::sqrt(3.0);
+    double minG = kInfinity, maxG = -kInfinity;
+    for (const double xi : {-g, g})
+      for (const double eta : {-g, g}) {
+        const Vec3 dXi = ((p[1] - p[0]) * (1.0 - eta) + (p[2] - p[3]) * (1.0 + eta)) * 0.25;
+        const Vec3 dEta = ((p[3] - p[0]) * (1.0 - xi) + (p[2] - p[1]) * (1.0 + xi)) * 0.25;
+        const double j = dot(cross(dXi, dEta), n);
+        minG = std::min(minG, j);
+        maxG = std::max(maxG, j);
+      }
+    q.jacobianRatioGauss = maxG > 0.0 ? minG / maxG : -1.0;
+  }
   q.scaledJacobian = minScaled;
 
   // Taper: signed corner-triangle areas along the element normal against half the quad area.
@@ -223,8 +237,35 @@ ElementQuality quadQuality(const std::array<Vec3, 4>& p) {
 }  // namespace
 
 ElementQuality elementQuality(const std::array<std::array<double, 3>, 4>& p, int corners) {
-  if (corners == 3) return triangleQuality(p);
-  if (corners == 4) return quadQuality(p);
+  if (corners == 3) return triangleQuality(p, nullptr);
+  if (corners == 4) return quadQuality(p, nullptr, true);
+  throw std::invalid_argument("an element has 3 or 4 corners, not " + std::to_string(corners));
+}
+
+AngleWindow makeAngleWindow(double minAngleDeg, double maxAngleDeg, double maxWarpingDeg,
+                            double maxSkewDeg) {
+  constexpr double kRadians = 0.017453292519943295;
+  // A bound outside 0..180 degrees (odd settings) gets a key no angle passes: nothing is skipped.
+  auto key = [&](double degrees, double outside) {
+    if (!(degrees >= 0.0 && degrees <= 180.0)) return outside;
+    return Angle(std::sin(degrees * kRadians), std::cos(degrees * kRadians)).key();
+  };
+  AngleWindow w;
+  w.minAngleDeg = minAngleDeg;
+  w.maxAngleDeg = maxAngleDeg;
+  w.maxWarpingDeg = maxWarpingDeg;
+  w.maxSkewDeg = maxSkewDeg;
+  w.minAngleKey = key(minAngleDeg, kInfinity);
+  w.maxAngleKey = key(maxAngleDeg, -kInfinity);
+  w.maxWarpingKey = key(maxWarpingDeg, -kInfinity);
+  w.minLineKey = key(90.0 - maxSkewDeg, kInfinity);
+  return w;
+}
+
+ElementQuality elementQualityWithin(const std::array<std::array<double, 3>, 4>& p, int corners,
+                                    const AngleWindow& window, bool gaussJacobian) {
+  if (corners == 3) return triangleQuality(p, &window);
+  if (corners == 4) return quadQuality(p, &window, gaussJacobian);
   throw std::invalid_argument("an element has 3 or 4 corners, not " + std::to_string(corners));
 }
 

@@ -1,0 +1,138 @@
+// The optimisation's face score (src/optimize/face_score.h) skips the degrees of angles that lie
+// inside their soft limits (src/quality/windowed_quality.h): it must fail exactly the criteria,
+// and give exactly the penalty, that the full metrics of elementQuality give, for any element,
+// including angles a hair either side of a limit, concave and degenerate elements.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "optimize/face_score.h"
+#include "quality/windowed_quality.h"
+#include "voxremesh/quality.h"
+
+namespace {
+
+using voxremesh::ElementQuality;
+using voxremesh::QuadMesh;
+using voxremesh::QualitySettings;
+using Points = std::array<std::array<double, 3>, 4>;
+
+constexpr double kRadians = 3.14159265358979323846 / 180.0;
+
+/// The score computed from the full metrics, as the report computes them.
+voxremesh::opt::Score exactScore(const Points& p, int corners, const QualitySettings& s) {
+  const ElementQuality q = voxremesh::elementQuality(p, corners);
+  voxremesh::opt::Score score;
+  score.failures = __builtin_popcount(voxremesh::elementFailures(q, corners, s));
+  score.penalty = voxremesh::opt::facePenalty(q, corners, s);
+  return score;
+}
+
+/// faceScore of the element as the only face of a mesh.
+voxremesh::opt::Score fastScore(const Points& p, int corners, const QualitySettings& s) {
+  QuadMesh mesh;
+  for (int k = 0; k < corners; ++k) mesh.points.push_back(p[std::size_t(k)]);
+  mesh.faces.push_back({0, 1, 2, corners == 4 ? 3u : voxremesh::kNoCorner});
+  return voxremesh::opt::faceScore(mesh, mesh.faces[0], s);
+}
+
+void expectSameScore(const Points& p, int corners, const QualitySettings& s) {
+  const voxremesh::opt::Score exact = exactScore(p, corners, s), fast = fastScore(p, corners, s);
+  EXPECT_EQ(fast.failures, exact.failures);
+  EXPECT_EQ(fast.penalty, exact.penalty);  // bit for bit: the same decisions everywhere
+}
+
+QualitySettings defaults() {
+  QualitySettings s;
+  s.targetSize = 1.0;
+  return s;
+}
+
+TEST(FaceScore, EqualsTheFullMetricsOnRandomElements) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> jitter(-0.45, 0.45), height(-0.3, 0.3);
+  const QualitySettings s = defaults();
+  for (int i = 0; i < 20000; ++i) {
+    Points p = {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}};
+    for (auto& corner : p) {
+      corner[0] += jitter(random);
+      corner[1] += jitter(random);
+      corner[2] += i % 2 == 0 ? 0.0 : height(random);
+    }
+    expectSameScore(p, 4, s);
+    expectSameScore(p, 3, s);
+  }
+}
+
+TEST(FaceScore, EqualsTheFullMetricsAtTheSoftLimitsOfTheAngles) {
+  // Rhombi and isosceles triangles whose angles sit within 1e-6 degrees of each soft limit
+  // (quads: 55 and 125; triangles: 35 and 110) and of each criterion's limit.
+  const QualitySettings s = defaults();
+  for (const double limit : {45.0, 55.0, 125.0, 135.0, 30.0, 35.0, 110.0, 120.0})
+    for (const double offset : {-1e-6, -1e-9, -1e-12, 0.0, 1e-12, 1e-9, 1e-6}) {
+      const double a = (limit + offset) * kRadians;
+      const Points rhombus = {
+          {{0, 0, 0}, {1, 0, 0}, {1 + std::cos(a), std::sin(a), 0}, {std::cos(a), std::sin(a), 0}}};
+      expectSameScore(rhombus, 4, s);
+      // Apex angle `a` between two unit legs.
+      const Points triangle = {{{0, 0, 0}, {1, 0, 0}, {std::cos(a), std::sin(a), 0}, {}}};
+      expectSameScore(triangle, 3, s);
+    }
+}
+
+TEST(FaceScore, EqualsTheFullMetricsAtTheSoftLimitOfWarping) {
+  // A unit square folded along its diagonal 0-2 by an angle within a hair of 10.5 degrees (0.7 x
+  // the 15-degree limit) and of 15 degrees.
+  const QualitySettings s = defaults();
+  for (const double limit : {10.5, 15.0})
+    for (const double offset : {-1e-6, -1e-9, 0.0, 1e-9, 1e-6}) {
+      const double fold = (limit + offset) * kRadians;
+      // Corner 3 turned about the diagonal 0-2 by `fold`: the two halves' normals differ by it.
+      const double h = std::sqrt(0.5);
+      const Points p = {
+          {{0, 0, 0},
+           {1, 0, 0},
+           {1, 1, 0},
+           {0.5 - h * std::cos(fold) * h, 0.5 + h * std::cos(fold) * h, h * std::sin(fold)}}};
+      expectSameScore(p, 4, s);
+    }
+}
+
+TEST(FaceScore, EqualsTheFullMetricsOnConcaveAndDegenerateElements) {
+  const QualitySettings s = defaults();
+  const Points concave = {{{0, 0, 0}, {2, 0, 0}, {0.5, 0.5, 0}, {0, 2, 0}}};
+  const Points zeroEdge = {{{0, 0, 0}, {0, 0, 0}, {1, 1, 0}, {0, 1, 0}}};
+  const Points line = {{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}}};
+  const Points bowtie = {{{0, 0, 0}, {1, 1, 0}, {1, 0, 0}, {0, 1, 0}}};
+  for (const Points& p : {concave, zeroEdge, line, bowtie}) {
+    expectSameScore(p, 4, s);
+    expectSameScore(p, 3, s);
+  }
+}
+
+TEST(FaceScore, EqualsTheFullMetricsUnderOtherLimits) {
+  // Other limits (the windows are kept per settings), the Jacobian at the Gauss points, and soft
+  // limits outside 0..180 degrees, where nothing may be skipped.
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> jitter(-0.4, 0.4);
+  QualitySettings strict = defaults(), gauss = defaults(), odd = defaults();
+  strict.minQuadAngleDeg = 80.0;
+  strict.maxQuadAngleDeg = 100.0;
+  strict.maxWarpingDeg = 2.0;
+  strict.maxSkewDeg = 5.0;
+  gauss.jacobianAtGaussPoints = true;
+  odd.minQuadAngleDeg = 175.0;  // soft limit 185 degrees
+  odd.maxTriaAngleDeg = 5.0;    // soft limit -5 degrees
+  for (int i = 0; i < 5000; ++i) {
+    Points p = {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}};
+    for (auto& corner : p)
+      for (double& x : corner) x += jitter(random);
+    for (const QualitySettings& s : {strict, gauss, odd, defaults()}) {
+      expectSameScore(p, 4, s);
+      expectSameScore(p, 3, s);
+    }
+  }
+}
+
+}  // namespace
