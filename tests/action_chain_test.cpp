@@ -319,4 +319,28 @@ TEST(ActionChainCli, OptimizeReconnectsFailingFacesUnlessToldNot) {
   EXPECT_TRUE(contains(negative.output, "reconnect= must be a count")) << negative.output;
 }
 
+TEST(ActionChainCli, OptimizeSplitsFailingQuadsWithinTheTriangleShare) {
+  // The bracket at its median edge length: quads still failing at the end become triangle pairs
+  // that fail less, the triangle share staying at or under split= (3 % by default); split=0
+  // leaves them, a share above 1 is refused.
+  VOXREMESH_REQUIRE_SHARED_DECK(deck, "bracket.k");
+  const fs::path dir = scratchDir("chain_split");
+  auto quality = [&](const std::string& options, const char* name) {
+    const auto run = runCli("-read " + quoted(deck) + " -voxelize size=4.5 -extract -optimize " +
+                            options + " -quality json=" + quoted(dir / name));
+    EXPECT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_EQ(contains(run.output, " 0 failing quads split"), !options.empty()) << run.output;
+    return json::parseJson(readText(dir / name));
+  };
+  const json::Json without = quality("split=0", "without.json");
+  const json::Json with = quality("", "with.json");
+  EXPECT_LT(with["failing_any_share"].number, without["failing_any_share"].number);
+  EXPECT_GT(with["tria_share"].number, without["tria_share"].number);
+  EXPECT_LE(with["tria_share"].number, 0.03);
+  const auto tooMuch =
+      runCli("-read " + quoted(deck) + " -voxelize size=6 -extract -optimize split=1.5");
+  EXPECT_EQ(tooMuch.exitCode, 1);
+  EXPECT_TRUE(contains(tooMuch.output, "splitFailingShare")) << tooMuch.output;
+}
+
 }  // namespace

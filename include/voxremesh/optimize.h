@@ -191,6 +191,18 @@ std::size_t rotateFailingEdges(QuadMesh& mesh, const QualitySettings& settings, 
 /// Throws std::invalid_argument for a bad mesh.
 std::size_t splitInvertedQuads(QuadMesh& mesh);
 
+/// Failing quads split: a quad failing criteria (quality.h, under `settings`) becomes the two
+/// triangles of the diagonal cut whose triangles fail fewer criteria in all (then the smaller
+/// penalty of face_score), when they fail fewer than the quad did (a quad folded over a bend
+/// tighter than its size: warping, Jacobian ratio). The largest gains go first, then face order,
+/// while the triangle share stays at or under `maxTriangleShare`. The triangles keep the quad's
+/// orientation and its place in the face order; points do not move. Serial, deterministic.
+/// @return the number of quads split
+/// Throws SettingError for a share outside 0..1 or bad settings; std::invalid_argument for
+/// settings.targetSize <= 0 or a bad mesh.
+std::size_t splitFailingQuads(QuadMesh& mesh, const QualitySettings& settings,
+                              double maxTriangleShare);
+
 /// Reconnection of failing faces: for each face failing a criterion (quality.h, under
 /// `settings`), in index order, its neighbourhood (the faces round the points of the faces round
 /// its corners) is tried as it is and after each change of connectivity at the face: every other
@@ -237,6 +249,9 @@ struct OptimizeSettings {
   int improveSweeps = 3;
   /// Rounds of reconnectFailingFaces after the last improveFailingElements pass (0: none).
   int reconnectRounds = 8;
+  /// Quads still failing are split into two triangles where these fail fewer criteria, while the
+  /// triangle share stays at or under this (splitFailingQuads; 0: none).
+  double splitFailingShare = 0.03;
   /// A face is of zero area below zeroAreaFactor x targetSize^2.
   double zeroAreaFactor = 1e-4;
   /// Edges longer than splitLengthFactor x targetSize whose midpoint lies farther than
@@ -272,6 +287,7 @@ struct OptimizeStats {
   double rotateSeconds = 0.0;
   double warpingSeconds = 0.0;
   double reconnectSeconds = 0.0;
+  double quadSplitSeconds = 0.0;  ///< splitFailingQuads and splitInvertedQuads
   double totalSeconds = 0.0;
   std::size_t edgesSplit = 0;
   CleanupResult cleanup;  ///< summed over both clean-up passes
@@ -280,6 +296,7 @@ struct OptimizeStats {
   std::size_t improvedMoves = 0;    ///< points moved by improveFailingElements
   std::size_t edgesRotated = 0;
   std::size_t reconnected = 0;    ///< neighbourhoods changed by reconnectFailingFaces
+  std::size_t failingSplit = 0;   ///< failing quads split into two triangles (splitFailingQuads)
   std::size_t invertedSplit = 0;  ///< quads with a reflex corner split into two triangles (last)
   WarpingResult warping;
 };
@@ -288,8 +305,8 @@ struct OptimizeStats {
 /// merging, relaxation, improvement of the failing elements, edge rotation (and the improvement
 /// again where any rotated), warping removal, the improvement once more (it takes only moves that
 /// leave fewer criteria failing around a point, warping included), the reconnection of the faces
-/// still failing (reconnectFailingFaces), and last the split of quads
-/// still inverted (splitInvertedQuads).
+/// still failing (reconnectFailingFaces), the split of quads still failing into triangle pairs that
+/// fail less (splitFailingQuads), and last the split of quads still inverted (splitInvertedQuads).
 /// @param mesh      the extracted mesh (preconditions at the top of the file)
 /// @param original  the original surface (built from the input shells), not empty
 /// @param settings  see OptimizeSettings

@@ -80,6 +80,7 @@ void runOptimize(ChainState& state, const ActionCall& call) {
   settings.collapseFoldedCurves = call.flag("folded");
   settings.shortEdgeFactor = call.number("short");
   settings.reconnectRounds = count(call, "reconnect");
+  settings.splitFailingShare = call.number("split");
   std::optional<QuadMesh> original = originalOfMesh(state, source, call);
   if (!original)
     throw std::runtime_error("no original surface for part " + std::to_string(source.mesh.part) +
@@ -97,7 +98,8 @@ void runOptimize(ChainState& state, const ActionCall& call) {
   say(state, "optimised part " + std::to_string(item.mesh.part) + ": " + meshCounts(item.mesh) +
                  " (" + std::to_string(stats.rhombicCollapsed) + " rhombic quads collapsed, " +
                  std::to_string(stats.trianglesMerged) + " triangle pairs merged, " +
-                 std::to_string(stats.reconnected) + " neighbourhoods reconnected, warped quads " +
+                 std::to_string(stats.reconnected) + " neighbourhoods reconnected, " +
+                 std::to_string(stats.failingSplit) + " failing quads split, warped quads " +
                  std::to_string(stats.warping.warpedBefore) + " -> " +
                  std::to_string(stats.warping.warpedAfter) + ")\n");
   state.stack.push_back(std::move(item));

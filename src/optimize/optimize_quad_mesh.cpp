@@ -38,6 +38,9 @@ void checkOptimizeSettings(const OptimizeSettings& s) {
   if (!std::isfinite(s.splitChordFactor) || s.splitChordFactor < 0.0)
     throw SettingError("optimize: splitChordFactor " + std::to_string(s.splitChordFactor) +
                        " is not finite and >= 0");
+  if (!(s.splitFailingShare >= 0.0 && s.splitFailingShare <= 1.0))
+    throw SettingError("optimize: splitFailingShare " + std::to_string(s.splitFailingShare) +
+                       " is outside 0 .. 1");
   if (!(s.warpingMoveFactor > 0.0))
     throw SettingError("optimize: warpingMoveFactor " + std::to_string(s.warpingMoveFactor) +
                        " is not > 0");
@@ -128,7 +131,11 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
     s.reconnected = reconnectFailingFaces(mesh, original, quality, settings.reconnectRounds);
     s.reconnectSeconds = secondsSince(r);
   }
+  const Clock::time_point q = Clock::now();
+  if (settings.splitFailingShare > 0.0 && quality.targetSize > 0.0)
+    s.failingSplit = splitFailingQuads(mesh, quality, settings.splitFailingShare);
   s.invertedSplit = splitInvertedQuads(mesh);
+  s.quadSplitSeconds = secondsSince(q);
   s.totalSeconds = secondsSince(start);
   if (stats) *stats = s;
 }
