@@ -1,7 +1,8 @@
-// The optimisation's face score (src/optimize/face_score.h) skips the degrees of angles that lie
-// inside their soft limits (src/quality/windowed_quality.h): it must fail exactly the criteria,
-// and give exactly the penalty, that the full metrics of elementQuality give, for any element,
-// including angles a hair either side of a limit, concave and degenerate elements.
+// The optimisation's face score (src/optimize/face_score.h): the criteria a face fails, a sliver
+// counting as failing every criterion. It skips the degrees of angles that lie inside their soft
+// limits (src/quality/windowed_quality.h), and must give exactly the score of the full metrics of
+// elementQuality, for any element, including angles a hair either side of a limit, concave and
+// degenerate elements.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,11 +23,7 @@ constexpr double kRadians = 3.14159265358979323846 / 180.0;
 
 /// The score computed from the full metrics, as the report computes them.
 voxremesh::opt::Score exactScore(const Points& p, int corners, const QualitySettings& s) {
-  const ElementQuality q = voxremesh::elementQuality(p, corners);
-  voxremesh::opt::Score score;
-  score.failures = __builtin_popcount(voxremesh::elementFailures(q, corners, s));
-  score.penalty = voxremesh::opt::facePenalty(q, corners, s);
-  return score;
+  return voxremesh::opt::scoreOfQuality(voxremesh::elementQuality(p, corners), corners, s);
 }
 
 /// faceScore of the element as the only face of a mesh.
@@ -47,6 +44,26 @@ QualitySettings defaults() {
   QualitySettings s;
   s.targetSize = 1.0;
   return s;
+}
+
+TEST(FaceScore, CountsTheCriteriaFailedAndASliverAsFailingEvery) {
+  const QualitySettings s = defaults();  // minimum length limit 0.5, a sliver under 0.05
+  // A unit square passes all; a 1 x 0.3 rectangle fails the minimum length (0.3) and the aspect
+  // ratio (3.33 < 5 passes): one criterion.
+  const Points square = {{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}};
+  const Points thin = {{{0, 0, 0}, {1, 0, 0}, {1, 0.3, 0}, {0, 0.3, 0}}};
+  EXPECT_EQ(fastScore(square, 4, s).failures, 0);
+  EXPECT_EQ(fastScore(square, 4, s).penalty, 0.0);
+  EXPECT_EQ(fastScore(thin, 4, s).failures, 1);
+  // 1 x 0.06 fails the minimum length and the aspect ratio; 1 x 0.04 is a sliver.
+  const Points narrow = {{{0, 0, 0}, {1, 0, 0}, {1, 0.06, 0}, {0, 0.06, 0}}};
+  const Points sliver = {{{0, 0, 0}, {1, 0, 0}, {1, 0.04, 0}, {0, 0.04, 0}}};
+  EXPECT_EQ(fastScore(narrow, 4, s).failures, 2);
+  EXPECT_EQ(fastScore(sliver, 4, s).failures, voxremesh::kCriterionCount);
+  // Four points on a line (a face folded flat along a curve) are a sliver too.
+  const Points line = {{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}}};
+  EXPECT_EQ(fastScore(line, 4, s).failures, voxremesh::kCriterionCount);
+  EXPECT_EQ(fastScore(line, 3, s).failures, voxremesh::kCriterionCount);
 }
 
 TEST(FaceScore, EqualsTheFullMetricsOnRandomElements) {

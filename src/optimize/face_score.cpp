@@ -75,18 +75,24 @@ double facePenalty(const ElementQuality& q, int corners, const QualitySettings& 
   return std::isnan(p) ? 1e30 : p;
 }
 
+Score scoreOfQuality(const ElementQuality& q, int corners, const QualitySettings& s) {
+  Score score;
+  score.failures = q.minLength >= kDegenerateLengthFraction * s.minLengthFactor * s.targetSize
+                       ? __builtin_popcount(elementFailures(q, corners, s))
+                       : kCriterionCount;
+  score.penalty = facePenalty(q, corners, s);
+  return score;
+}
+
 Score faceScore(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face,
                 const QualitySettings& settings) {
   const int n = cornerCount(face);
   std::array<std::array<double, 3>, 4> p{};
   for (int k = 0; k < n; ++k) p[std::size_t(k)] = mesh.points[face[std::size_t(k)]];
   // Angles inside their soft limits add nothing and fail nothing: their degrees are not needed.
-  const ElementQuality q =
-      elementQualityWithin(p, n, windowFor(settings, n), settings.jacobianAtGaussPoints);
-  Score score;
-  score.failures = __builtin_popcount(elementFailures(q, n, settings));
-  score.penalty = facePenalty(q, n, settings);
-  return score;
+  return scoreOfQuality(
+      elementQualityWithin(p, n, windowFor(settings, n), settings.jacobianAtGaussPoints), n,
+      settings);
 }
 
 }  // namespace voxremesh::opt

@@ -34,7 +34,22 @@ struct Score {
 /// @param s        the criteria; s.targetSize > 0 for the length term
 double facePenalty(const ElementQuality& q, int corners, const QualitySettings& s);
 
-/// The score of one face of `mesh` (its corners must name existing points).
+/// A face whose minimum element length (quality.h) is under this fraction of the criterion's limit
+/// (QualitySettings::minLengthFactor x targetSize) is degenerate: a sliver whose explicit time
+/// step would be a tenth of the allowed one, worse than any mild failure elsewhere.
+inline constexpr double kDegenerateLengthFraction = 0.1;
+
+/// The score of a face with the given metrics: the number of criteria it fails (a degenerate face
+/// counts as failing every criterion, kCriterionCount, so that no step trades mild failures
+/// round it for a sliver) and facePenalty.
+/// @param q        the face's metrics (elementQuality)
+/// @param corners  3 or 4
+/// @param s        the criteria; s.targetSize > 0
+Score scoreOfQuality(const ElementQuality& q, int corners, const QualitySettings& s);
+
+/// The score of one face of `mesh` (its corners must name existing points): scoreOfQuality of
+/// its metrics, computed without the degrees of angles that lie inside their soft limits (the
+/// same score, bit for bit).
 Score faceScore(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face,
                 const QualitySettings& settings);
 
