@@ -13,6 +13,7 @@
 #include <set>
 
 #include "support/test_support.h"
+#include "support/unit_grid.h"
 #include "voxremesh/errors.h"
 #include "voxremesh/extract.h"
 #include "voxremesh/io.h"
@@ -35,14 +36,8 @@ constexpr double kPi = 3.14159265358979323846;
 /// boundary points counter-clockwise), its four corners are Corner points, the other boundary
 /// points Boundary points.
 QuadMesh grid(int n) {
-  QuadMesh mesh;
-  auto id = [n](int i, int j) { return static_cast<CornerIndex>(j * (n + 1) + i); };
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) mesh.points.push_back({double(i), double(j), 0.0});
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i)
-      mesh.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
-  mesh.constraints.resize(mesh.points.size());
+  QuadMesh mesh = voxremesh::test::unitGrid(n);
+  auto id = [n](int i, int j) { return voxremesh::test::gridPoint(n, i, j); };
   voxremesh::MeshCurve loop;
   loop.closed = true;
   loop.role = PointRole::Boundary;

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "support/unit_grid.h"
 #include "voxremesh/optimize.h"
 #include "voxremesh/quality.h"
 
@@ -25,14 +26,8 @@ using voxremesh::ReferenceSurface;
 
 /// An n x n grid of unit quads in the plane z = 0, its boundary points fixed (Corner).
 QuadMesh fixedBoundaryGrid(int n) {
-  QuadMesh mesh;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) mesh.points.push_back({double(i), double(j), 0.0});
-  auto id = [n](int i, int j) { return CornerIndex(j * (n + 1) + i); };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i)
-      mesh.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
-  mesh.constraints.resize(mesh.points.size());
+  QuadMesh mesh = voxremesh::test::unitGrid(n);
+  auto id = [n](int i, int j) { return voxremesh::test::gridPoint(n, i, j); };
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i)
       if (i == 0 || j == 0 || i == n || j == n)
