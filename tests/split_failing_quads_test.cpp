@@ -64,6 +64,25 @@ TEST(SplitFailingQuads, SplitsTheFoldedQuadAlongItsFold) {
   EXPECT_EQ(after.nonManifoldEdges, 0u);
 }
 
+TEST(SplitFailingQuads, DoesNotCutAlongAnExistingEdge) {
+  // A triangle standing on the fold's diagonal (19, 23): cutting along it would give that edge
+  // three faces, so the quad is cut along its other diagonal (18, 24), or not at all.
+  QuadMesh mesh = gridWithAFoldedCorner();
+  mesh.points.push_back({3.5, 3.5, 5.0});
+  mesh.constraints.emplace_back();
+  mesh.faces.push_back({23, 19, CornerIndex(mesh.points.size() - 1), voxremesh::kNoCorner});
+  voxremesh::splitFailingQuads(mesh, unitCriteria(), 1.0);
+  std::size_t onTheDiagonal = 0;
+  for (const auto& face : mesh.faces) {
+    const auto end = face.begin() + voxremesh::cornerCount(face);
+    const bool has19 = std::find(face.begin(), end, 19u) != end;
+    const bool has23 = std::find(face.begin(), end, 23u) != end;
+    onTheDiagonal += has19 && has23 ? 1 : 0;
+  }
+  EXPECT_EQ(onTheDiagonal, 1u);  // the standing triangle alone
+  EXPECT_EQ(voxremesh::test::meshTopology(mesh).nonManifoldEdges, 0u);
+}
+
 TEST(SplitFailingQuads, KeepsToTheTriangleShareAndLeavesPassingQuads) {
   const voxremesh::QualitySettings criteria = unitCriteria();
   // 16 faces: one split gives 2 triangles of 17 faces (11.8 %).

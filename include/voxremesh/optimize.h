@@ -195,8 +195,9 @@ std::size_t splitInvertedQuads(QuadMesh& mesh);
 /// triangles of the diagonal cut whose triangles fail fewer criteria in all (then the smaller
 /// penalty of face_score), when they fail fewer than the quad did (a quad folded over a bend
 /// tighter than its size: warping, Jacobian ratio). The largest gains go first, then face order,
-/// while the triangle share stays at or under `maxTriangleShare`. The triangles keep the quad's
-/// orientation and its place in the face order; points do not move. Serial, deterministic.
+/// while the triangle share stays at or under `maxTriangleShare`. A diagonal that is already an
+/// edge of other faces is not cut. The triangles keep the quad's orientation and its place in the
+/// face order; points do not move. Serial, deterministic.
 /// @return the number of quads split
 /// Throws SettingError for a share outside 0..1 or bad settings; std::invalid_argument for
 /// settings.targetSize <= 0 or a bad mesh.

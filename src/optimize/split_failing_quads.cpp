@@ -42,6 +42,7 @@ std::size_t splitFailingQuads(QuadMesh& mesh, const QualitySettings& settings,
     throw std::invalid_argument("splitFailingQuads: targetSize must be > 0");
   checkQualitySettings(settings);
   opt::checkMesh(mesh);
+  const opt::Topology topology = opt::buildTopology(mesh);
   std::size_t triangles = 0;
   std::vector<Candidate> candidates;
   for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
@@ -54,16 +55,20 @@ std::size_t splitFailingQuads(QuadMesh& mesh, const QualitySettings& settings,
     if (quad.failures == 0) continue;
     Candidate best;
     opt::Score bestScore;
+    bool found = false;
     for (int k = 0; k < 2; ++k) {
+      // A diagonal that is already an edge of other faces would get more than two faces.
+      if (topology.edgeFaces(face[std::size_t(k)], face[std::size_t(k + 2)]) > 0) continue;
       opt::Score score;
       for (const Face& triangle : cutAlong(face, k))
         score += opt::faceScore(mesh, triangle, settings);
-      if (k == 0 || score.betterThan(bestScore)) {
+      if (!found || score.betterThan(bestScore)) {
+        found = true;
         bestScore = score;
         best = Candidate{f, k, quad.failures - score.failures};
       }
     }
-    if (best.gain > 0) candidates.push_back(best);
+    if (found && best.gain > 0) candidates.push_back(best);
   }
   // The largest gains first, then in face order; each split adds a face and two triangles.
   std::stable_sort(candidates.begin(), candidates.end(),
