@@ -343,4 +343,28 @@ TEST(ActionChainCli, OptimizeSplitsFailingQuadsWithinTheTriangleShare) {
   EXPECT_TRUE(contains(tooMuch.output, "splitFailingShare")) << tooMuch.output;
 }
 
+TEST(ActionChainCli, OptimizeFitsFarPlacesOfTheOriginalUnlessToldNot) {
+  // The bracket at its median edge: the mesh cuts across tight bends; fit= pulls points towards
+  // the original's farthest places, lowering the two-sided distance without failing more
+  // elements; fit=0 leaves the step out, a negative count is refused.
+  VOXREMESH_REQUIRE_SHARED_DECK(deck, "bracket.k");
+  const fs::path dir = scratchDir("chain_fit");
+  auto quality = [&](const std::string& options, const char* name) {
+    const auto run = runCli("-read " + quoted(deck) + " -voxelize size=4.463 -extract -optimize " +
+                            options + " -quality json=" + quoted(dir / name));
+    EXPECT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_EQ(contains(run.output, " 0 points pulled towards far places"), !options.empty())
+        << run.output;
+    return json::parseJson(readText(dir / name));
+  };
+  const json::Json without = quality("fit=0", "without.json");
+  const json::Json with = quality("", "with.json");
+  EXPECT_LT(with["distance"]["max"].number, 0.95 * without["distance"]["max"].number);
+  EXPECT_LE(with["failing_any_share"].number, without["failing_any_share"].number);
+  const auto negative =
+      runCli("-read " + quoted(deck) + " -voxelize size=6 -extract -optimize fit=-1");
+  EXPECT_EQ(negative.exitCode, 1);
+  EXPECT_TRUE(contains(negative.output, "fit= must be a count")) << negative.output;
+}
+
 }  // namespace

@@ -230,6 +230,8 @@ int run(int argc, char** argv) {
   std::printf("    warping removal   %8.4f s  (%d iterations, %zu -> %zu warped)\n",
               best.warpingSeconds, best.warping.iterations, best.warping.warpedBefore,
               best.warping.warpedAfter);
+  std::printf("    distance fitting  %8.4f s  (%zu points pulled)\n", best.fitSeconds,
+              best.farPulls);
   std::printf("    quad splitting    %8.4f s  (%zu failing, %zu inverted)\n", best.quadSplitSeconds,
               best.failingSplit, best.invertedSplit);
   std::printf("    total             %8.4f s  = %.2f x the extraction\n", best.totalSeconds,

@@ -191,6 +191,21 @@ std::size_t rotateFailingEdges(QuadMesh& mesh, const QualitySettings& settings, 
 /// Throws std::invalid_argument for a bad mesh.
 std::size_t splitInvertedQuads(QuadMesh& mesh);
 
+/// Points pulled towards the far places of the original: the samples of `original` (its
+/// samplePoints) farther from the mesh than 0.8 x the distance limit (settings.maxDistanceFactor x
+/// targetSize), farthest first, each pull a Free interior corner of the face nearest to the sample
+/// (the nearest corner first) moved all, else half, of the way to it, projected on `original`. A
+/// pull is kept when the samples nearest to the point's faces come closer at their farthest, the
+/// faces round it fail no more criteria (as face_score counts them) and stray from `original` no
+/// more than before or than 0.8 x the limit (chordError). Points round a pull wait for the next
+/// pass; passes repeat until none pulls or `maxPasses` is reached. Serial, deterministic; faces do
+/// not change.
+/// @return the number of pulls
+/// Throws std::invalid_argument for an empty surface, negative passes, settings.targetSize <= 0
+/// or a bad mesh; SettingError for bad settings.
+std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& original,
+                                 const QualitySettings& settings, int maxPasses = 3);
+
 /// Failing quads split: a quad failing criteria (quality.h, under `settings`) becomes the two
 /// triangles of the diagonal cut whose triangles fail fewer criteria in all (then the smaller
 /// penalty of face_score), when they fail fewer than the quad did (a quad folded over a bend
@@ -250,6 +265,8 @@ struct OptimizeSettings {
   int improveSweeps = 3;
   /// Rounds of reconnectFailingFaces after the last improveFailingElements pass (0: none).
   int reconnectRounds = 8;
+  /// Passes of fitFarOriginalPoints after the reconnection (0: none).
+  int fitPasses = 3;
   /// Quads still failing are split into two triangles where these fail fewer criteria, while the
   /// triangle share stays at or under this (splitFailingQuads; 0: none).
   double splitFailingShare = 0.03;
@@ -288,6 +305,7 @@ struct OptimizeStats {
   double rotateSeconds = 0.0;
   double warpingSeconds = 0.0;
   double reconnectSeconds = 0.0;
+  double fitSeconds = 0.0;        ///< fitFarOriginalPoints
   double quadSplitSeconds = 0.0;  ///< splitFailingQuads and splitInvertedQuads
   double totalSeconds = 0.0;
   std::size_t edgesSplit = 0;
@@ -297,6 +315,7 @@ struct OptimizeStats {
   std::size_t improvedMoves = 0;    ///< points moved by improveFailingElements
   std::size_t edgesRotated = 0;
   std::size_t reconnected = 0;    ///< neighbourhoods changed by reconnectFailingFaces
+  std::size_t farPulls = 0;       ///< points pulled towards far original places
   std::size_t failingSplit = 0;   ///< failing quads split into two triangles (splitFailingQuads)
   std::size_t invertedSplit = 0;  ///< quads with a reflex corner split into two triangles (last)
   WarpingResult warping;
@@ -306,8 +325,9 @@ struct OptimizeStats {
 /// merging, relaxation, improvement of the failing elements, edge rotation (and the improvement
 /// again where any rotated), warping removal, the improvement once more (it takes only moves that
 /// leave fewer criteria failing around a point, warping included), the reconnection of the faces
-/// still failing (reconnectFailingFaces), the split of quads still failing into triangle pairs that
-/// fail less (splitFailingQuads), and last the split of quads still inverted (splitInvertedQuads).
+/// still failing (reconnectFailingFaces), points pulled towards the far places of the original
+/// (fitFarOriginalPoints), the split of quads still failing into triangle pairs that fail less
+/// (splitFailingQuads), and last the split of quads still inverted (splitInvertedQuads).
 /// @param mesh      the extracted mesh (preconditions at the top of the file)
 /// @param original  the original surface (built from the input shells), not empty
 /// @param settings  see OptimizeSettings

@@ -57,6 +57,11 @@ class ReferenceSurface {
   /// Precondition: !empty().
   std::vector<SurfaceHit> closestPoints(const std::vector<std::array<double, 3>>& queries) const;
 
+  /// Points that sample the surface, as quality's two-sided distance samples a mesh: the corners
+  /// its triangles use, then the middles of their distinct edges, then their centroids (a quad's
+  /// diagonal and its two triangles' centroids included).
+  std::vector<std::array<double, 3>> samplePoints() const;
+
  private:
   struct Node {
     std::array<double, 3> lo{}, hi{};  ///< holds the boxes of its triangles

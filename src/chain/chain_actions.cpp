@@ -252,6 +252,9 @@ const std::vector<ActionDef> kActions = {
       {"short", OptionType::Number, "0", "collapse edges shorter than this x size (0: none)"},
       {"reconnect", OptionType::Integer, "8",
        "rounds of the reconnection of faces still failing (0: none)"},
+      {"fit", OptionType::Integer, "3",
+       "passes pulling points towards the places of the original the mesh passes farthest from "
+       "(0: none)"},
       {"split", OptionType::Number, "0.03",
        "split quads still failing into two triangles that fail less, while the triangle share "
        "stays at or under this (0: none)"},

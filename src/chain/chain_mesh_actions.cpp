@@ -80,6 +80,7 @@ void runOptimize(ChainState& state, const ActionCall& call) {
   settings.collapseFoldedCurves = call.flag("folded");
   settings.shortEdgeFactor = call.number("short");
   settings.reconnectRounds = count(call, "reconnect");
+  settings.fitPasses = count(call, "fit");
   settings.splitFailingShare = call.number("split");
   std::optional<QuadMesh> original = originalOfMesh(state, source, call);
   if (!original)
@@ -99,6 +100,7 @@ void runOptimize(ChainState& state, const ActionCall& call) {
                  " (" + std::to_string(stats.rhombicCollapsed) + " rhombic quads collapsed, " +
                  std::to_string(stats.trianglesMerged) + " triangle pairs merged, " +
                  std::to_string(stats.reconnected) + " neighbourhoods reconnected, " +
+                 std::to_string(stats.farPulls) + " points pulled towards far places, " +
                  std::to_string(stats.failingSplit) + " failing quads split, warped quads " +
                  std::to_string(stats.warping.warpedBefore) + " -> " +
                  std::to_string(stats.warping.warpedAfter) + ")\n");

@@ -23,7 +23,7 @@ void checkOptimizeSettings(const OptimizeSettings& s) {
     throw SettingError("optimize: warpingDeg " + std::to_string(s.warpingDeg) +
                        " is outside 0 .. 180");
   if (s.warpingIterations < 0 || s.relaxIterations < 0 || s.improveSweeps < 0 ||
-      s.reconnectRounds < 0)
+      s.reconnectRounds < 0 || s.fitPasses < 0)
     throw SettingError("optimize: iteration counts must be >= 0");
   if (!(s.relaxDamping > 0.0 && s.relaxDamping <= 0.7))
     throw SettingError("optimize: relaxDamping " + std::to_string(s.relaxDamping) +
@@ -130,6 +130,11 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
     const Clock::time_point r = Clock::now();
     s.reconnected = reconnectFailingFaces(mesh, original, quality, settings.reconnectRounds);
     s.reconnectSeconds = secondsSince(r);
+  }
+  if (settings.fitPasses > 0 && quality.targetSize > 0.0) {
+    const Clock::time_point f = Clock::now();
+    s.farPulls = fitFarOriginalPoints(mesh, original, quality, settings.fitPasses);
+    s.fitSeconds = secondsSince(f);
   }
   const Clock::time_point q = Clock::now();
   if (settings.splitFailingShare > 0.0 && quality.targetSize > 0.0)

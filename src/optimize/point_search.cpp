@@ -50,6 +50,26 @@ void localFrame(const QuadMesh& mesh, const Topology& t, CornerIndex v, Vec3& no
 
 }  // namespace
 
+bool searchDirections(const QuadMesh& mesh, const Topology& t, CornerIndex v,
+                      std::array<Vec3, 8>& directions, double& edge) {
+  Vec3 normal;
+  localFrame(mesh, t, v, normal, edge);
+  if (!(edge > 0.0) || norm(normal) == 0.0) return false;
+  // An in-plane basis.
+  const Vec3 axis = std::abs(normal[0]) < 0.9 ? Vec3{1.0, 0.0, 0.0} : Vec3{0.0, 1.0, 0.0};
+  const Vec3 u = normalized(cross(normal, axis));
+  const Vec3 w = cross(normal, u);
+  directions = {u,
+                u * -1.0,
+                w,
+                w * -1.0,
+                normalized(u + w),
+                normalized(u - w) * -1.0,
+                normalized(u - w),
+                normalized(u + w) * -1.0};
+  return true;
+}
+
 /// The summed score of the faces around v.
 Score scoreAround(const QuadMesh& mesh, const Topology& t, CornerIndex v,
                   const QualitySettings& settings) {
@@ -100,22 +120,9 @@ bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& ori
                   int movesPerStep) {
   const Vec3 start = mesh.points[v];
   const bool free = roleOf(mesh, v) == PointRole::Free;
-  Vec3 normal;
+  std::array<Vec3, 8> directions;
   double edge = 0.0;
-  localFrame(mesh, t, v, normal, edge);
-  if (!(edge > 0.0) || norm(normal) == 0.0) return false;
-  // An in-plane basis.
-  const Vec3 axis = std::abs(normal[0]) < 0.9 ? Vec3{1.0, 0.0, 0.0} : Vec3{0.0, 1.0, 0.0};
-  const Vec3 u = normalized(cross(normal, axis));
-  const Vec3 w = cross(normal, u);
-  const std::array<Vec3, 8> directions = {u,
-                                          u * -1.0,
-                                          w,
-                                          w * -1.0,
-                                          normalized(u + w),
-                                          normalized(u - w) * -1.0,
-                                          normalized(u - w),
-                                          normalized(u + w) * -1.0};
+  if (!searchDirections(mesh, t, v, directions, edge)) return false;
   std::uint32_t hint = kNoCorner;
   auto place = [&](const Vec3& wanted) {
     if (!free) return constrainedPosition(mesh, curves, v, wanted);

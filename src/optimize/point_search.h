@@ -2,6 +2,7 @@
 // improveFailingElements and reconnectFailingFaces (optimize.h).
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "optimize/face_score.h"
@@ -18,6 +19,13 @@ inline bool searchable(const QuadMesh& mesh, const Topology& t, CornerIndex v) {
   return (role == PointRole::Free && !t.boundary[v]) || role == PointRole::Boundary ||
          role == PointRole::Feature;
 }
+
+/// The directions a pattern search moves point v in: 8 unit vectors (the two axes of a basis of the
+/// plane normal to the sum of its faces' normals, both ways, then the diagonals), and the mean
+/// length of its edges. False (nothing set) where the normals sum to zero or the edges have no
+/// length.
+bool searchDirections(const QuadMesh& mesh, const Topology& t, CornerIndex v,
+                      std::array<Vec3, 8>& directions, double& edge);
 
 /// The summed score of the faces around v (topology `t` of `mesh`).
 Score scoreAround(const QuadMesh& mesh, const Topology& t, CornerIndex v,

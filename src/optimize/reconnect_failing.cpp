@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "optimize/chord_error.h"
 #include "optimize/edge_polygon.h"
 #include "optimize/point_search.h"
 #include "voxremesh/optimize.h"
@@ -91,25 +92,6 @@ Neighbourhood neighbourhoodOf(const QuadMesh& mesh, const opt::Topology& t, std:
       n.allPoints.push_back(mesh.faces[f][std::size_t(j)]);
   sortUnique(n.allPoints);
   return n;
-}
-
-/// How far the faces of `mesh` listed in `faces` stray from the original: the largest distance
-/// from it of a face's centre or of the middle of one of its edges.
-double chordError(const QuadMesh& mesh, const std::vector<Face>& faces,
-                  const ReferenceSurface& original) {
-  double largest = 0.0;
-  for (const Face& face : faces) {
-    const int n = cornerCount(face);
-    Vec3 centre{0.0, 0.0, 0.0};
-    for (int k = 0; k < n; ++k) {
-      const Vec3& p = mesh.points[face[std::size_t(k)]];
-      const Vec3& q = mesh.points[face[std::size_t((k + 1) % n)]];
-      centre = centre + p * (1.0 / n);
-      largest = std::max(largest, original.closestPoint((p + q) * 0.5).distance);
-    }
-    largest = std::max(largest, original.closestPoint(centre).distance);
-  }
-  return largest;
 }
 
 opt::Score scoreOf(const QuadMesh& mesh, const QualitySettings& settings) {
@@ -333,14 +315,14 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
                             Trial& trial = trials[order[i]];
                             searchTrial(trial, original, settings, fixedOnCurve, curves,
                                         sweeps - 1);
-                            trial.chord = chordError(trial.mesh, trial.mesh.faces, original);
+                            trial.chord = opt::chordError(trial.mesh, trial.mesh.faces, original);
                           }
                         });
       // Only tries whose faces stay as close to the original as half the distance limit, or as
       // the neighbourhood's faces were, take part.
       std::vector<Face> present;
       for (const std::uint32_t g : n.faces) present.push_back(mesh.faces[g]);
-      const double allowed = std::max(chordError(mesh, present, original),
+      const double allowed = std::max(opt::chordError(mesh, present, original),
                                       0.5 * settings.maxDistanceFactor * settings.targetSize);
       std::sort(order.begin(), order.end());
       const Trial* best = nullptr;

@@ -1,0 +1,29 @@
+// chordError (chord_error.h).
+#include "optimize/chord_error.h"
+
+#include <algorithm>
+
+#include "geometry/vec3.h"
+
+namespace voxremesh::opt {
+
+using namespace geom;  // NOLINT: the vector operators
+
+double chordError(const QuadMesh& mesh, const std::vector<std::array<CornerIndex, 4>>& faces,
+                  const ReferenceSurface& original) {
+  double largest = 0.0;
+  for (const auto& face : faces) {
+    const int n = cornerCount(face);
+    Vec3 centre{0.0, 0.0, 0.0};
+    for (int k = 0; k < n; ++k) {
+      const Vec3& p = mesh.points[face[std::size_t(k)]];
+      const Vec3& q = mesh.points[face[std::size_t((k + 1) % n)]];
+      centre = centre + p * (1.0 / n);
+      largest = std::max(largest, original.closestPoint((p + q) * 0.5).distance);
+    }
+    largest = std::max(largest, original.closestPoint(centre).distance);
+  }
+  return largest;
+}
+
+}  // namespace voxremesh::opt

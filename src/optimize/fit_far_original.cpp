@@ -1,0 +1,191 @@
+// fitFarOriginalPoints: points of the mesh pulled towards the places of the original surface the
+// mesh passes farthest from (tight bends it cuts across), where that lowers the largest distance
+// there without failing more criteria (optimize.h).
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <vector>
+
+#include "optimize/chord_error.h"
+#include "optimize/face_score.h"
+#include "optimize/mesh_topology.h"
+#include "optimize/point_search.h"
+#include "voxremesh/optimize.h"
+
+namespace voxremesh {
+
+namespace {
+
+using Face = std::array<CornerIndex, 4>;
+using opt::Vec3;
+using namespace geom;  // NOLINT: the vector operators
+
+/// Samples of the original farther from the mesh than this share of the distance limit are the
+/// ones the step works on (a margin under the limit).
+constexpr double kFarShare = 0.8;
+
+/// The faces round v.
+std::vector<Face> facesAround(const QuadMesh& mesh, const opt::Topology& t, CornerIndex v) {
+  std::vector<Face> faces;
+  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f)
+    faces.push_back(mesh.faces[*f]);
+  return faces;
+}
+
+/// A sample of the original near a point's faces, with its distance to them before any move.
+struct NearSample {
+  Vec3 point;
+  double before = 0.0;
+};
+
+/// How far the samples `near` (sorted by `before`, farthest first) lie beyond `far` from the faces
+/// `faces` of `mesh` after a corner of those faces moved by `moved`: the sum of the squares of
+/// their excess. Infinite when a sample ends up farther than both `far` and its distance before.
+/// A sample whose distance before plus `moved` is within `far` is not measured (no point of the
+/// faces moved farther than `moved`): it stays within.
+double excessNear(const QuadMesh& mesh, const std::vector<Face>& faces,
+                  const std::vector<NearSample>& near, double moved, double far) {
+  QuadMesh patch;
+  for (Face face : faces) {
+    for (int k = 0; k < cornerCount(face); ++k) {
+      patch.points.push_back(mesh.points[face[std::size_t(k)]]);
+      face[std::size_t(k)] = CornerIndex(patch.points.size() - 1);
+    }
+    patch.faces.push_back(face);
+  }
+  const ReferenceSurface surface(patch);
+  double excess = 0.0;
+  for (const NearSample& s : near) {
+    if (s.before + moved <= far) break;
+    const double d = surface.closestPoint(s.point).distance;
+    if (d > std::max(s.before, far)) return std::numeric_limits<double>::infinity();
+    if (d > far) excess += (d - far) * (d - far);
+  }
+  return excess;
+}
+
+}  // namespace
+
+std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& original,
+                                 const QualitySettings& settings, int maxPasses) {
+  if (original.empty())
+    throw std::invalid_argument("fitFarOriginalPoints: the original surface is empty");
+  if (maxPasses < 0) throw std::invalid_argument("fitFarOriginalPoints: negative pass count");
+  if (!(settings.targetSize > 0.0))
+    throw std::invalid_argument("fitFarOriginalPoints: targetSize must be > 0");
+  checkQualitySettings(settings);
+  opt::checkMesh(mesh);
+  if (mesh.faces.empty()) return 0;
+  const double far = kFarShare * settings.maxDistanceFactor * settings.targetSize;
+  const std::vector<Vec3> samples = original.samplePoints();
+  const opt::Topology t = opt::buildTopology(mesh);
+  std::size_t pulled = 0;
+  std::vector<SurfaceHit> hits;
+  for (int pass = 0; pass < maxPasses; ++pass) {
+    // The closest point of the mesh to each sample; after the first pass the previous answer's
+    // face is the hint (the same answers, found faster).
+    const ReferenceSurface current(mesh);
+    if (pass == 0) {
+      hits = current.closestPoints(samples);
+    } else {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 256),
+                        [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t i = r.begin(); i < r.end(); ++i)
+                            hits[i] = current.closestPoint(samples[i], hits[i].face);
+                        });
+    }
+    // The samples each face is closest to (for the check of a pull's faces), and the far ones,
+    // farthest first.
+    std::vector<std::vector<std::uint32_t>> nearestTo(mesh.faces.size());
+    std::vector<std::uint32_t> farSamples;
+    for (std::uint32_t i = 0; i < hits.size(); ++i) {
+      nearestTo[hits[i].face].push_back(i);
+      if (hits[i].distance > far) farSamples.push_back(i);
+    }
+    std::stable_sort(farSamples.begin(), farSamples.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return hits[a].distance > hits[b].distance;
+    });
+    std::vector<std::uint8_t> locked(mesh.points.size(), 0), searched(mesh.faces.size(), 0);
+    std::size_t passPulled = 0;
+    for (const std::uint32_t i : farSamples) {
+      // One search per face and pass: the first (farthest) sample of a face stands for the rest.
+      if (searched[hits[i].face]) continue;
+      searched[hits[i].face] = 1;
+      const Face& face = mesh.faces[hits[i].face];
+      const int n = cornerCount(face);
+      // The face's movable corners, the nearest to the sample first.
+      std::vector<CornerIndex> corners;
+      bool anyLocked = false;
+      for (int k = 0; k < n; ++k) {
+        const CornerIndex v = face[std::size_t(k)];
+        anyLocked = anyLocked || locked[v] != 0;
+        if (opt::roleOf(mesh, v) == PointRole::Free && !t.boundary[v]) corners.push_back(v);
+      }
+      if (anyLocked) continue;  // the hits there are stale until the next pass
+      std::stable_sort(corners.begin(), corners.end(), [&](CornerIndex a, CornerIndex b) {
+        return distance(mesh.points[a], samples[i]) < distance(mesh.points[b], samples[i]);
+      });
+      for (const CornerIndex v : corners) {
+        std::array<Vec3, 8> directions;
+        double edge = 0.0;
+        if (!opt::searchDirections(mesh, t, v, directions, edge)) continue;
+        const std::vector<Face> around = facesAround(mesh, t, v);
+        std::vector<NearSample> near;
+        for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f)
+          for (const std::uint32_t s : nearestTo[*f])
+            near.push_back({samples[s], hits[s].distance});
+        std::stable_sort(near.begin(), near.end(), [](const NearSample& a, const NearSample& b) {
+          return a.before > b.before;
+        });
+        const int failuresBefore = opt::scoreAround(mesh, t, v, settings).failures;
+        const double chordAllowed = std::max(opt::chordError(mesh, around, original), far);
+        const Vec3 start = mesh.points[v];
+        // A compass search in the plane of the point's faces (as improvePoint's): a move is taken
+        // when the nearby samples lie less beyond `far` (excessNear), none farther than before
+        // where beyond it, the faces fail no more criteria and stray no farther from the original
+        // than allowed.
+        double best = 0.0;
+        for (const NearSample& sample : near)
+          if (sample.before > far) best += (sample.before - far) * (sample.before - far);
+        Vec3 position = start;
+        std::uint32_t hint = kNoCorner;
+        for (double step = 0.25 * edge; step > 0.06 * edge; step *= 0.5) {
+          bool improved = true;
+          for (int round = 0; improved && round < 3; ++round) {
+            improved = false;
+            for (const Vec3& direction : directions) {
+              const SurfaceHit hit = original.closestPoint(position + direction * step, hint);
+              hint = hit.face;
+              mesh.points[v] = hit.point;
+              if (opt::scoreAround(mesh, t, v, settings).failures > failuresBefore) continue;
+              const double excess = excessNear(mesh, around, near, distance(hit.point, start), far);
+              if (!(excess < best * (1.0 - 1e-9))) continue;
+              if (opt::chordError(mesh, around, original) > chordAllowed) continue;
+              best = excess;
+              position = hit.point;
+              improved = true;
+              break;
+            }
+          }
+        }
+        mesh.points[v] = position;
+        if (position == start) continue;
+        for (const Face& f : around)
+          for (int k = 0; k < cornerCount(f); ++k) locked[f[std::size_t(k)]] = 1;
+        ++passPulled;
+        break;
+      }
+    }
+    pulled += passPulled;
+    if (passPulled == 0) break;
+  }
+  return pulled;
+}
+
+}  // namespace voxremesh
