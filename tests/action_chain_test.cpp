@@ -294,29 +294,43 @@ TEST(ActionChainCli, QualityOfDecksAndBadOptions) {
 
 namespace {
 
+/// The quality JSON of the bracket voxelized at `size`, extracted and optimised with `options`,
+/// written to dir/name; the run must succeed and report `count` ("N things") as 0 exactly when
+/// `options` is not empty (the options leave the step out).
+json::Json optimisedBracket(const fs::path& deck, const fs::path& dir, const std::string& size,
+                            const std::string& options, const char* name, const char* count) {
+  const auto run =
+      runCli("-read " + quoted(deck) + " -voxelize size=" + size + " -extract -optimize " +
+             options + " -quality json=" + quoted(dir / name));
+  EXPECT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, count)) << run.output;
+  EXPECT_EQ(contains(run.output, std::string(" 0 ") + count), !options.empty()) << run.output;
+  return json::parseJson(readText(dir / name));
+}
+
+/// Runs the chain on the bracket at 6 mm with `options`, which must be refused with `message`.
+void expectRefused(const fs::path& deck, const std::string& options, const char* message) {
+  const auto run =
+      runCli("-read " + quoted(deck) + " -voxelize size=6 -extract -optimize " + options);
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_TRUE(contains(run.output, message)) << run.output;
+}
+
 TEST(ActionChainCli, OptimizeReconnectsFailingFacesUnlessToldNot) {
   // The bracket at its median edge length: the reconnection of failing faces takes the failing
   // share under issue 5's 1 % (1.5 % without it); reconnect=0 leaves it out, a negative count is
   // refused.
   VOXREMESH_REQUIRE_SHARED_DECK(deck, "bracket.k");
   const fs::path dir = scratchDir("chain_reconnect");
-  auto failingShare = [&](const std::string& options, const char* name) {
-    const auto run = runCli("-read " + quoted(deck) + " -voxelize size=4.5 -extract -optimize " +
-                            options + " -quality json=" + quoted(dir / name));
-    EXPECT_EQ(run.exitCode, 0) << run.output;
-    EXPECT_TRUE(contains(run.output, options.empty() ? "neighbourhoods reconnected"
-                                                     : " 0 neighbourhoods reconnected"))
-        << run.output;
-    return json::parseJson(readText(dir / name))["failing_any_share"].number;
-  };
-  const double without = failingShare("reconnect=0", "without.json");
-  const double with = failingShare("", "with.json");
+  const char* count = "neighbourhoods reconnected";
+  const double without =
+      optimisedBracket(deck, dir, "4.5", "reconnect=0", "without.json", count)["failing_any_share"]
+          .number;
+  const double with =
+      optimisedBracket(deck, dir, "4.5", "", "with.json", count)["failing_any_share"].number;
   EXPECT_LT(with, 0.01);
   EXPECT_GT(without, with);
-  const auto negative =
-      runCli("-read " + quoted(deck) + " -voxelize size=6 -extract -optimize reconnect=-1");
-  EXPECT_EQ(negative.exitCode, 1);
-  EXPECT_TRUE(contains(negative.output, "reconnect= must be a count")) << negative.output;
+  expectRefused(deck, "reconnect=-1", "reconnect= must be a count");
 }
 
 TEST(ActionChainCli, OptimizeSplitsFailingQuadsWithinTheTriangleShare) {
@@ -325,22 +339,13 @@ TEST(ActionChainCli, OptimizeSplitsFailingQuadsWithinTheTriangleShare) {
   // leaves them, a share above 1 is refused.
   VOXREMESH_REQUIRE_SHARED_DECK(deck, "bracket.k");
   const fs::path dir = scratchDir("chain_split");
-  auto quality = [&](const std::string& options, const char* name) {
-    const auto run = runCli("-read " + quoted(deck) + " -voxelize size=4.5 -extract -optimize " +
-                            options + " -quality json=" + quoted(dir / name));
-    EXPECT_EQ(run.exitCode, 0) << run.output;
-    EXPECT_EQ(contains(run.output, " 0 failing quads split"), !options.empty()) << run.output;
-    return json::parseJson(readText(dir / name));
-  };
-  const json::Json without = quality("split=0", "without.json");
-  const json::Json with = quality("", "with.json");
+  const char* count = "failing quads split";
+  const json::Json without = optimisedBracket(deck, dir, "4.5", "split=0", "without.json", count);
+  const json::Json with = optimisedBracket(deck, dir, "4.5", "", "with.json", count);
   EXPECT_LT(with["failing_any_share"].number, without["failing_any_share"].number);
   EXPECT_GT(with["tria_share"].number, without["tria_share"].number);
   EXPECT_LE(with["tria_share"].number, 0.03);
-  const auto tooMuch =
-      runCli("-read " + quoted(deck) + " -voxelize size=6 -extract -optimize split=1.5");
-  EXPECT_EQ(tooMuch.exitCode, 1);
-  EXPECT_TRUE(contains(tooMuch.output, "splitFailingShare")) << tooMuch.output;
+  expectRefused(deck, "split=1.5", "splitFailingShare");
 }
 
 TEST(ActionChainCli, OptimizeFitsFarPlacesOfTheOriginalUnlessToldNot) {
@@ -349,22 +354,12 @@ TEST(ActionChainCli, OptimizeFitsFarPlacesOfTheOriginalUnlessToldNot) {
   // elements; fit=0 leaves the step out, a negative count is refused.
   VOXREMESH_REQUIRE_SHARED_DECK(deck, "bracket.k");
   const fs::path dir = scratchDir("chain_fit");
-  auto quality = [&](const std::string& options, const char* name) {
-    const auto run = runCli("-read " + quoted(deck) + " -voxelize size=4.463 -extract -optimize " +
-                            options + " -quality json=" + quoted(dir / name));
-    EXPECT_EQ(run.exitCode, 0) << run.output;
-    EXPECT_EQ(contains(run.output, " 0 points pulled towards far places"), !options.empty())
-        << run.output;
-    return json::parseJson(readText(dir / name));
-  };
-  const json::Json without = quality("fit=0", "without.json");
-  const json::Json with = quality("", "with.json");
+  const char* count = "points pulled towards far places";
+  const json::Json without = optimisedBracket(deck, dir, "4.463", "fit=0", "without.json", count);
+  const json::Json with = optimisedBracket(deck, dir, "4.463", "", "with.json", count);
   EXPECT_LT(with["distance"]["max"].number, 0.95 * without["distance"]["max"].number);
   EXPECT_LE(with["failing_any_share"].number, without["failing_any_share"].number);
-  const auto negative =
-      runCli("-read " + quoted(deck) + " -voxelize size=6 -extract -optimize fit=-1");
-  EXPECT_EQ(negative.exitCode, 1);
-  EXPECT_TRUE(contains(negative.output, "fit= must be a count")) << negative.output;
+  expectRefused(deck, "fit=-1", "fit= must be a count");
 }
 
 }  // namespace
