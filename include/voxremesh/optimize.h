@@ -191,16 +191,17 @@ std::size_t rotateFailingEdges(QuadMesh& mesh, const QualitySettings& settings, 
 /// Throws std::invalid_argument for a bad mesh.
 std::size_t splitInvertedQuads(QuadMesh& mesh);
 
-/// Points pulled towards the far places of the original: the samples of `original` (its
-/// samplePoints) farther from the mesh than 0.8 x the distance limit (settings.maxDistanceFactor x
-/// targetSize), farthest first, each pull a Free interior corner of the face nearest to the sample
-/// (the nearest corner first) moved all, else half, of the way to it, projected on `original`. A
-/// pull is kept when the samples nearest to the point's faces come closer at their farthest, the
-/// faces round it fail no more criteria (as face_score counts them) and stray from `original` no
-/// more than before or than 0.8 x the limit (chordError). Points round a pull wait for the next
-/// pass; passes repeat until none pulls or `maxPasses` is reached. Serial, deterministic; faces do
-/// not change.
-/// @return the number of pulls
+/// Points pulled towards the far places of the original: the points of `original` (its
+/// usedPoints, the original's nodes) farther from the mesh than 0.8 x the distance limit
+/// (settings.maxDistanceFactor x targetSize), farthest first, one per face of the mesh nearest to
+/// them, each the start of a compass search (as improveFailingElements') of a Free interior corner
+/// of that face, the nearest first. A move is taken when the original points nearest to the
+/// corner's faces lie less beyond 0.8 x the limit (summed squares), none farther than before
+/// where beyond it, the faces fail no more criteria (as face_score counts them) and stray from
+/// `original` no more than before or than 0.8 x the limit (chordError). Points round a moved one
+/// wait for the next pass; passes repeat until none moves or `maxPasses` is reached. Serial
+/// searches, deterministic; faces do not change.
+/// @return the number of points moved
 /// Throws std::invalid_argument for an empty surface, negative passes, settings.targetSize <= 0
 /// or a bad mesh; SettingError for bad settings.
 std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& original,

@@ -57,10 +57,8 @@ class ReferenceSurface {
   /// Precondition: !empty().
   std::vector<SurfaceHit> closestPoints(const std::vector<std::array<double, 3>>& queries) const;
 
-  /// Points that sample the surface, as quality's two-sided distance samples a mesh: the corners
-  /// its triangles use, then the middles of their distinct edges, then their centroids (a quad's
-  /// diagonal and its two triangles' centroids included).
-  std::vector<std::array<double, 3>> samplePoints() const;
+  /// The points its triangles use (of a mesh's points, those some face names), in index order.
+  std::vector<std::array<double, 3>> usedPoints() const;
 
  private:
   struct Node {

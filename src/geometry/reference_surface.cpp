@@ -10,7 +10,6 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "geometry/safe_box.h"
@@ -255,23 +254,14 @@ SurfaceHit ReferenceSurface::closestPoint(const std::array<double, 3>& p,
   return hit;
 }
 
-std::vector<std::array<double, 3>> ReferenceSurface::samplePoints() const {
+std::vector<std::array<double, 3>> ReferenceSurface::usedPoints() const {
   std::vector<std::uint8_t> used(points_.size(), 0);
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
   for (const auto& tri : tris_)
-    for (std::size_t k = 0; k < 3; ++k) {
-      used[tri[k]] = 1;
-      edges.emplace_back(std::min(tri[k], tri[(k + 1) % 3]), std::max(tri[k], tri[(k + 1) % 3]));
-    }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  std::vector<Vec3> samples;
+    for (const std::uint32_t v : tri) used[v] = 1;
+  std::vector<Vec3> result;
   for (std::size_t v = 0; v < points_.size(); ++v)
-    if (used[v]) samples.push_back(points_[v]);
-  for (const auto& [a, b] : edges) samples.push_back((points_[a] + points_[b]) * 0.5);
-  for (const auto& tri : tris_)
-    samples.push_back((points_[tri[0]] + points_[tri[1]] + points_[tri[2]]) * (1.0 / 3.0));
-  return samples;
+    if (used[v]) result.push_back(points_[v]);
+  return result;
 }
 
 std::vector<SurfaceHit> ReferenceSurface::closestPoints(

@@ -1,6 +1,6 @@
-// fitFarOriginalPoints: points of the mesh pulled towards the places of the original surface the
-// mesh passes farthest from (tight bends it cuts across), where that lowers the largest distance
-// there without failing more criteria (optimize.h).
+// fitFarOriginalPoints: points of the mesh pulled towards the nodes of the original surface the
+// mesh passes farthest from (tight bends it cuts across), where that brings them closer without
+// failing more criteria (optimize.h).
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -8,7 +8,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <stdexcept>
 #include <vector>
 
@@ -83,23 +82,25 @@ std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& origina
   opt::checkMesh(mesh);
   if (mesh.faces.empty()) return 0;
   const double far = kFarShare * settings.maxDistanceFactor * settings.targetSize;
-  const std::vector<Vec3> samples = original.samplePoints();
+  const std::vector<Vec3> samples = original.usedPoints();
   const opt::Topology t = opt::buildTopology(mesh);
   std::size_t pulled = 0;
   std::vector<SurfaceHit> hits;
   for (int pass = 0; pass < maxPasses; ++pass) {
-    // The closest point of the mesh to each sample; after the first pass the previous answer's
-    // face is the hint (the same answers, found faster).
+    // The closest point of the mesh to each sample, with a hint (the same answers, found
+    // faster): in the first pass the answer for the sample before (a deck's nodes come in runs
+    // of near ones), then the previous pass's answer.
     const ReferenceSurface current(mesh);
-    if (pass == 0) {
-      hits = current.closestPoints(samples);
-    } else {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 256),
-                        [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i < r.end(); ++i)
-                            hits[i] = current.closestPoint(samples[i], hits[i].face);
-                        });
-    }
+    hits.resize(samples.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 256),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        std::uint32_t hint = kNoCorner;
+                        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                          hits[i] =
+                              current.closestPoint(samples[i], pass == 0 ? hint : hits[i].face);
+                          hint = hits[i].face;
+                        }
+                      });
     // The samples each face is closest to (for the check of a pull's faces), and the far ones,
     // farthest first.
     std::vector<std::vector<std::uint32_t>> nearestTo(mesh.faces.size());
