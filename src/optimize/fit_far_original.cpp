@@ -86,6 +86,10 @@ std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& origina
   const opt::Topology t = opt::buildTopology(mesh);
   std::size_t pulled = 0;
   std::vector<SurfaceHit> hits;
+  // The pass in which a face's corners were last searched in vain, and in which a point was last
+  // among the corners of a moved point's faces: a face searched in vain is not searched again
+  // while none of its corners has changed since.
+  std::vector<int> vainPass(mesh.faces.size(), -1), changedPass(mesh.points.size(), -1);
   for (int pass = 0; pass < maxPasses; ++pass) {
     // The closest point of the mesh to each sample, with a hint (the same answers, found
     // faster): in the first pass the answer for the sample before (a deck's nodes come in runs
@@ -116,10 +120,15 @@ std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& origina
     std::size_t passPulled = 0;
     for (const std::uint32_t i : farSamples) {
       // One search per face and pass: the first (farthest) sample of a face stands for the rest.
-      if (searched[hits[i].face]) continue;
-      searched[hits[i].face] = 1;
-      const Face& face = mesh.faces[hits[i].face];
+      const std::uint32_t f = hits[i].face;
+      if (searched[f]) continue;
+      searched[f] = 1;
+      const Face& face = mesh.faces[f];
       const int n = cornerCount(face);
+      if (vainPass[f] >= 0 && std::all_of(face.begin(), face.begin() + n, [&](CornerIndex c) {
+            return changedPass[c] < vainPass[f];
+          }))
+        continue;
       // The face's movable corners, the nearest to the sample first.
       std::vector<CornerIndex> corners;
       bool anyLocked = false;
@@ -132,14 +141,15 @@ std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& origina
       std::stable_sort(corners.begin(), corners.end(), [&](CornerIndex a, CornerIndex b) {
         return distance(mesh.points[a], samples[i]) < distance(mesh.points[b], samples[i]);
       });
+      bool moved = false;
       for (const CornerIndex v : corners) {
         std::array<Vec3, 8> directions;
         double edge = 0.0;
         if (!opt::searchDirections(mesh, t, v, directions, edge)) continue;
         const std::vector<Face> around = facesAround(mesh, t, v);
         std::vector<NearSample> near;
-        for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f)
-          for (const std::uint32_t s : nearestTo[*f])
+        for (const std::uint32_t* g = t.facesBegin(v); g != t.facesEnd(v); ++g)
+          for (const std::uint32_t s : nearestTo[*g])
             near.push_back({samples[s], hits[s].distance});
         std::stable_sort(near.begin(), near.end(), [](const NearSample& a, const NearSample& b) {
           return a.before > b.before;
@@ -177,11 +187,16 @@ std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& origina
         }
         mesh.points[v] = position;
         if (position == start) continue;
-        for (const Face& f : around)
-          for (int k = 0; k < cornerCount(f); ++k) locked[f[std::size_t(k)]] = 1;
+        for (const Face& g : around)
+          for (int k = 0; k < cornerCount(g); ++k) {
+            locked[g[std::size_t(k)]] = 1;
+            changedPass[g[std::size_t(k)]] = pass;
+          }
         ++passPulled;
+        moved = true;
         break;
       }
+      if (!moved) vainPass[f] = pass;
     }
     pulled += passPulled;
     if (passPulled == 0) break;
