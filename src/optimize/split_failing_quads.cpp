@@ -2,6 +2,7 @@
 // triangles, worst gains first, while the triangle share allows (optimize.h).
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -42,7 +43,7 @@ std::size_t splitFailingQuads(QuadMesh& mesh, const QualitySettings& settings,
     throw std::invalid_argument("splitFailingQuads: targetSize must be > 0");
   checkQualitySettings(settings);
   opt::checkMesh(mesh);
-  const opt::Topology topology = opt::buildTopology(mesh);
+  std::optional<opt::Topology> topology;  // built at the first failing quad
   std::size_t triangles = 0;
   std::vector<Candidate> candidates;
   for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
@@ -53,12 +54,13 @@ std::size_t splitFailingQuads(QuadMesh& mesh, const QualitySettings& settings,
     }
     const opt::Score quad = opt::faceScore(mesh, face, settings);
     if (quad.failures == 0) continue;
+    if (!topology) topology = opt::buildTopology(mesh);
     Candidate best;
     opt::Score bestScore;
     bool found = false;
     for (int k = 0; k < 2; ++k) {
       // A diagonal that is already an edge of other faces would get more than two faces.
-      if (topology.edgeFaces(face[std::size_t(k)], face[std::size_t(k + 2)]) > 0) continue;
+      if (topology->edgeFaces(face[std::size_t(k)], face[std::size_t(k + 2)]) > 0) continue;
       opt::Score score;
       for (const Face& triangle : cutAlong(face, k))
         score += opt::faceScore(mesh, triangle, settings);
