@@ -219,7 +219,7 @@ TEST(BatchCli, OneBrokenJobThenResume) {
   const auto first = runCli("batch " + quoted(dir / "jobs.json") + " --threads 2");
   EXPECT_EQ(first.exitCode, 1) << first.output;
   EXPECT_TRUE(contains(first.output, "FAILED broken")) << first.output;
-  EXPECT_TRUE(contains(first.output, "2 ok, 2 failed, 0 skipped")) << first.output;
+  EXPECT_TRUE(contains(first.output, "2 ok, 0 short, 2 failed, 0 skipped")) << first.output;
   EXPECT_FALSE(contains(first.output, "\r"));  // no progress line off a terminal
   EXPECT_TRUE(fs::exists(dir / "out" / "hat_rail.bdf"));
   EXPECT_TRUE(fs::exists(dir / "out" / "obj.obj"));
@@ -229,7 +229,7 @@ TEST(BatchCli, OneBrokenJobThenResume) {
 
   const auto resumed = runCli("batch " + quoted(dir / "jobs.json") + " --resume");
   EXPECT_EQ(resumed.exitCode, 1);
-  EXPECT_TRUE(contains(resumed.output, "0 ok, 2 failed, 2 skipped")) << resumed.output;
+  EXPECT_TRUE(contains(resumed.output, "0 ok, 0 short, 2 failed, 2 skipped")) << resumed.output;
 
   // Sharded runs write their own summaries.
   const auto shard = runCli("batch " + quoted(dir / "jobs.json") + " --shard 0/2 --resume");

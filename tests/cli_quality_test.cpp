@@ -48,8 +48,10 @@ TEST(CliQuality, BracketMatchesThePublishedInputQuality) {
   const fs::path dir = scratchDir("cli_quality_bracket");
   const CliRun r =
       runCliSplit("quality " + quoted(deck) + " --json --vtu " + quoted(dir / "q.vtu"));
-  ASSERT_EQ(r.exitCode, 0) << r.err;
+  // A quarter of the input's elements fail a criterion: the report says FAIL, the exit code 3.
+  ASSERT_EQ(r.exitCode, 3) << r.err;
   const auto report = parseJson(r.out);
+  EXPECT_FALSE(report["pass"].boolean);
   EXPECT_EQ(report["elements"].number, 1865.0);
   EXPECT_EQ(report["trias"].number, 54.0);
   EXPECT_NEAR(report["target_size"].number, 4.46, 0.01);  // the median edge (shared README)
@@ -80,9 +82,11 @@ TEST(CliQuality, TableAndVtuWithDistance) {
   const fs::path dir = scratchDir("cli_quality_vtu");
   const CliRun r = runCliSplit("quality " + quoted(deck) + " --original " + quoted(deck) +
                                " --vtu " + quoted(dir / "q.vtu"));
-  ASSERT_EQ(r.exitCode, 0) << r.err;
-  for (const char* row : {"warping", "aspect", "quad_min_angle", "taper", "min_length",
-                          "any criterion", "tria share", "distance max"})
+  ASSERT_EQ(r.exitCode, 3) << r.err;  // the input itself fails (a quarter of its elements)
+  EXPECT_NE(r.out.find("result: FAIL"), std::string::npos) << r.out;
+  for (const char* row :
+       {"warping", "aspect", "quad_min_angle", "taper", "min_length", "degenerate_corner", "folded",
+        "distance", "any criterion", "tria share", "distance max"})
     EXPECT_NE(r.out.find(row), std::string::npos) << row;
   const std::string vtu = readText(dir / "q.vtu");
   for (const char* name :
@@ -97,11 +101,11 @@ TEST(CliQuality, LimitOverridesChangeTheCounts) {
   // 416.
   const CliRun gauss =
       runCliSplit("quality " + quoted(deck) + " --json --jacobian-at-gauss-points");
-  ASSERT_EQ(gauss.exitCode, 0) << gauss.err;
+  ASSERT_EQ(gauss.exitCode, 3) << gauss.err;
   EXPECT_EQ(criterion(parseJson(gauss.out), "jacobian_ratio")["failing"].number, 73.0);
   EXPECT_EQ(parseJson(gauss.out)["jacobian_at"].text, "gauss_points");
   const CliRun loose = runCliSplit("quality " + quoted(deck) + " --json --warping 90");
-  ASSERT_EQ(loose.exitCode, 0) << loose.err;
+  ASSERT_EQ(loose.exitCode, 3) << loose.err;
   EXPECT_EQ(criterion(parseJson(loose.out), "warping")["failing"].number, 0.0);
   EXPECT_EQ(criterion(parseJson(loose.out), "warping")["limit"].number, 90.0);
 }

@@ -41,7 +41,20 @@ TEST(Pipeline, PlansPartsAndTargetSizes) {
   ASSERT_EQ(plans.size(), 2u);
   EXPECT_EQ(plans[0].name, "left");
   EXPECT_EQ(plans[0].shells, 1u);
+  // One size for the whole deck by default: the median of all its shells' edges.
+  EXPECT_DOUBLE_EQ(deckTargetSize(model), 2.0);
+  EXPECT_DOUBLE_EQ(plans[0].targetSize, 2.0);
+  EXPECT_DOUBLE_EQ(plans[1].targetSize, 2.0);
+  // Per-part sizes only when asked for; a size for a part that is not remeshed is refused.
+  settings.partSizes = {{10, 1.5}};
+  plans = planRemesh(model, settings);
   EXPECT_DOUBLE_EQ(plans[0].targetSize, 1.5);
+  EXPECT_DOUBLE_EQ(plans[1].targetSize, 2.0);
+  settings.partSizes = {{30, 1.0}};
+  EXPECT_THROW(planRemesh(model, settings), SettingError);
+  settings.partSizes = {{10, -1.0}};
+  EXPECT_THROW(planRemesh(model, settings), SettingError);
+  settings.partSizes.clear();
   settings.targetSize = 0.5;
   settings.parts = {20};
   plans = planRemesh(model, settings);
@@ -131,20 +144,18 @@ TEST(Pipeline, RemeshDeckDoesNotDependOnTheThreadCount) {
     written.push_back(test::readText(path));
   }
   EXPECT_EQ(written[0], written[1]);
-  // A failing part names itself; the deck is left as it was.
+  // A part over the memory budget is kept with the reason, without retries (a finer voxel would
+  // need more); the deck keeps its shells.
   FeModel copy = deck;
   settings.parts = {200};
   settings.volume.memoryLimitBytes = 1000;
-  EXPECT_THROW(
-      {
-        try {
-          remeshDeck(copy, settings);
-        } catch (const SettingError& error) {
-          EXPECT_NE(std::string(error.what()).find("part 200: "), std::string::npos);
-          throw;
-        }
-      },
-      SettingError);
+  const RemeshReport refused = remeshDeck(copy, settings);
+  ASSERT_EQ(refused.parts.size(), 1u);
+  EXPECT_EQ(refused.parts[0].status, PartStatus::Kept);
+  EXPECT_EQ(refused.parts[0].attempts, 1);
+  EXPECT_NE(refused.parts[0].reason.find("memory limit"), std::string::npos)
+      << refused.parts[0].reason;
+  EXPECT_FALSE(refused.allAccepted());
   EXPECT_EQ(copy.shells.size(), deck.shells.size());
 }
 
@@ -176,6 +187,7 @@ TEST(Pipeline, PartsOfDifferentSizesStillShareTheirSeam) {
           model, shell++, 2,
           {wallNode(k, j), wallNode(k, j + 1), wallNode(k + 1, j + 1), wallNode(k + 1, j)});
   RemeshSettings settings;
+  settings.partSizes = {{1, 4.0}, {2, 5.0}};
   const std::vector<PartPlan> plans = planRemesh(model, settings);
   ASSERT_EQ(plans.size(), 2u);
   ASSERT_NE(plans[0].targetSize, plans[1].targetSize);

@@ -95,7 +95,9 @@ void parseShard(const std::string& text, BatchOptions& options);
 struct BatchResult {
   std::size_t index = 0;
   std::string name;
-  std::string status;  ///< "ok", "failed", "skipped" (resume), "other-shard"
+  /// "ok", "short" (output written, but a remesh kept parts unchanged), "failed", "skipped"
+  /// (resume), "other-shard"
+  std::string status;
   std::string message;
   double seconds = 0.0;
   std::optional<std::size_t> elementsIn;   ///< shells of the input (of the part for voxelize)
@@ -107,6 +109,7 @@ struct BatchResult {
   std::optional<std::size_t> qualityFailures;
   std::optional<double> qualityFailureShare;
   std::optional<double> maxDistance;
+  std::optional<std::size_t> partsKept;  ///< remesh jobs: parts kept unchanged
 };
 
 /// Runs the jobs of this shard in parallel within the thread budget; every job runs to its own
@@ -122,8 +125,8 @@ std::vector<BatchResult> runBatch(const std::vector<BatchJob>& jobs, const Batch
 std::string batchSummaryCsv(const std::vector<BatchJob>& jobs,
                             const std::vector<BatchResult>& results);
 
-/// The summary as JSON: {"jobs": [...], "ok": n, "failed": n, "skipped": n} with the CSV's
-/// fields per job (null where unknown).
+/// The summary as JSON: {"jobs": [...], "ok": n, "short": n, "failed": n, "skipped": n} with the
+/// CSV's fields per job (null where unknown).
 std::string batchSummaryJson(const std::vector<BatchJob>& jobs,
                              const std::vector<BatchResult>& results);
 

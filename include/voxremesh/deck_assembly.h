@@ -56,6 +56,7 @@
 
 #include <cstddef>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "voxremesh/fe_model.h"
@@ -121,5 +122,16 @@ struct AssemblyReport {
 /// without shells or a part twice, has a face corner out of range or a non-finite coordinate,
 /// or when a shell names a node the model does not define.
 AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& newParts);
+
+}  // namespace voxremesh
+
+namespace voxremesh {
+
+/// The nodes among `candidates` that solid elements of the deck's verbatim keywords name:
+/// Nastran CHEXA, CPENTA, CTETRA, CPYRAM; LS-DYNA *ELEMENT_SOLID... and *ELEMENT_TSHELL... (their
+/// data lines scanned for the IDs, which may count an equal number that is not a node). A shell
+/// whose corners are all such nodes lies on a face of the solid mesh. Deterministic.
+std::unordered_set<Id> solidElementNodes(const FeModel& model,
+                                         const std::unordered_set<Id>& candidates);
 
 }  // namespace voxremesh

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -29,9 +30,18 @@ namespace voxremesh {
 
 /// Settings of remeshing a deck. Every field has a documented default.
 struct RemeshSettings {
-  /// Target element size in model units; 0 (the default) means per part the median element edge
-  /// length of the part's shells (defaultTargetSize). Negative or non-finite is refused.
+  /// Target element size in model units; 0 (the default) means one size for the whole deck: the
+  /// median edge length of all its shells (deckTargetSize). Negative or non-finite is refused.
   double targetSize = 0.0;
+  /// Per-part target sizes that replace targetSize for those parts (only when asked for).
+  std::map<Id, double> partSizes;
+  /// Finer-voxel retries of a part whose mesh misses the acceptance (each halves the voxel).
+  int retries = 2;
+  /// A sheet narrower than this many voxels (its width 2 x area / boundary length) gets a voxel
+  /// this much smaller than its width, so that the strip, flange or hole is kept.
+  double narrowFeatureVoxels = 3.0;
+  /// The finest voxel any reduction or retry may reach, as a share of the part's target size.
+  double finestVoxelShare = 0.125;
   /// The parts to remesh; empty (the default) means every part with shells.
   std::vector<Id> parts;
   /// Feature and corner angles (sheets.h defaults: 45 and 30 degrees).
@@ -54,7 +64,7 @@ struct PartPlan {
   Id part = 0;
   std::string name;
   std::size_t shells = 0;   ///< shells of the part before remeshing
-  double targetSize = 0.0;  ///< the target element size used for the part
+  double targetSize = 0.0;  ///< the target element size asked for the part
 };
 
 /// The IDs of the parts that have shells, ascending.
@@ -75,6 +85,11 @@ Id choosePart(const FeModel& model, Id requested, const std::string& deckName,
 /// Preconditions: the part has shells naming existing nodes. Throws std::invalid_argument when
 /// the part has no shells or every side has zero length.
 double defaultTargetSize(const FeModel& model, Id part);
+
+/// The median edge length of all shells of the deck (each side of each shell counted), the
+/// default target size of every part. Throws std::invalid_argument when the deck has no shells
+/// or every side has zero length.
+double deckTargetSize(const FeModel& model);
 
 /// The parts remeshDeck will remesh and their target sizes, in ascending part ID.
 /// Throws SettingError when a requested part does not exist or has no shells (listing the parts
@@ -119,10 +134,42 @@ QuadMesh extractPartMesh(const std::vector<Volume>& volumes, const ExtractSettin
 /// empty volume.
 QuadMesh extractPartTriangles(const std::vector<Volume>& volumes);
 
+/// How a part ended (DESIGN.md, "What must hold on every real deck").
+enum class PartStatus {
+  Remeshed,  ///< its new mesh passed the acceptance at the first voxel size
+  Retried,   ///< its new mesh passed the acceptance at a finer voxel
+  Kept,      ///< its original elements were written back unchanged (reason says why)
+};
+
+/// "remeshed", "retried" or "kept".
+const char* partStatusName(PartStatus status);
+
+/// The acceptance checks of a part's new mesh against the part's original shells.
+struct PartAcceptance {
+  bool accepted = false;
+  std::string reason;        ///< what failed, empty when accepted
+  double size = 0.0;         ///< the element size judged against: the voxel size used
+  std::size_t elements = 0;  ///< of the new mesh
+  std::size_t quads = 0, trias = 0;
+  std::size_t failing = 0;  ///< elements failing a criterion (distance and folds included)
+  double failingShare = 0.0;
+  double distance = 0.0;  ///< two-sided, sampled inside the faces
+  double distanceLimit = 0.0;
+  std::size_t folded = 0;             ///< against neighbours or against the original
+  std::size_t degenerateCorners = 0;  ///< quads with a corner of (almost) 180 degrees
+  std::size_t componentsBefore = 0, componentsAfter = 0;
+  std::size_t loopsBefore = 0, loopsAfter = 0;
+};
+
 /// What remeshDeck did to one part.
 struct RemeshedPart {
   PartPlan plan;
-  std::size_t quads = 0, trias = 0;  ///< of the new mesh
+  PartStatus status = PartStatus::Kept;
+  std::string reason;                ///< why the part was kept, or why its voxel was reduced
+  int attempts = 0;                  ///< meshes built (0 when the part was refused before any)
+  double voxelSize = 0.0;            ///< of the accepted mesh (of the last attempt when kept)
+  PartAcceptance acceptance;         ///< of the accepted mesh (of the last attempt when kept)
+  std::size_t quads = 0, trias = 0;  ///< of the new mesh (0 when kept)
   ExtractStats extract;
   double volumeSeconds = 0.0;    ///< sheets and volume
   double extractSeconds = 0.0;   ///< extraction
@@ -135,6 +182,10 @@ struct RemeshReport {
   AssemblyReport assembly;
   double assemblySeconds = 0.0;
   double totalSeconds = 0.0;
+  /// Parts with the given status.
+  std::size_t count(PartStatus status) const;
+  /// Every part was remeshed or retried (none kept).
+  bool allAccepted() const { return count(PartStatus::Kept) == 0; }
 };
 
 /// Progress of remeshDeck: the stage ("volume", "extract", "assemble"), the part (0 for the
@@ -143,12 +194,14 @@ struct RemeshReport {
 using RemeshProgress = std::function<void(const std::string& stage, Id part, double done)>;
 
 /// Remeshes the planned parts of a deck in place (see the top of the file): parts in parallel
-/// within settings.threads, then one assembly. The result does not depend on the thread count.
-/// @param deck      the deck as readDeck returns it; modified only when every part succeeded
+/// within settings.threads, then one assembly of the accepted meshes. A part error never stops
+/// the deck: each part ends remeshed, retried at a finer voxel, or kept (its shells unchanged)
+/// with the reason. A part whose shells lie on faces of solid elements is kept (remeshing it
+/// would detach them). The result does not depend on the thread count.
+/// @param deck      the deck as readDeck returns it; its accepted parts replaced
 /// @param settings  see RemeshSettings
 /// @param progress  optional progress callback
-/// Throws as planRemesh, partVolume and extractQuadMesh; when several parts fail, the error of
-/// the first failing part in plan order, its message prefixed with "part ID: ".
+/// Throws as planRemesh (bad settings, parts that do not exist).
 RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
                         const RemeshProgress& progress = {});
 

@@ -39,6 +39,19 @@
 // - Minimum element length, the LS-DYNA shell characteristic length of the explicit time step:
 //   (1 + b) A / (longest edge), b = 0 for quads (A the quad area above), b = 1 for triangles.
 //
+// - Degenerate corner (quads): the largest reflex-corrected interior angle above
+//   QualitySettings::degenerateCornerDeg (179 degrees): the element normal solvers estimate there
+//   vanishes (CalculiX stops on it).
+//
+// Criteria of an element in its mesh (they need its neighbours or the original surface):
+// - Folded: the element's normal points against (more than 120 degrees from) the normals of at
+//   least half of its edge neighbours, each neighbour's normal taken in the element's orientation
+//   (flipped when the two run along their shared edge in the same direction). foldedFaces below.
+// - Distance (only with an original surface): a sample of the element (a corner or a point
+//   inside it) lies farther than the distance limit from the original, or a sample of the
+//   original farther than the limit has its closest point on the element (the element is where
+//   the original is not covered).
+//
 // Per mesh: the share of triangles among all elements, and the distance between the mesh and an
 // original surface in both directions (surfaceDistance, below).
 #pragma once
@@ -77,6 +90,11 @@ struct QualitySettings {
   double targetSize = 0.0;
   double maxTriangleShare = 0.05;   ///< triangles / all elements
   double maxDistanceFactor = 0.25;  ///< two-sided max distance limit = this x targetSize
+  /// A quad corner above this angle (reflex-corrected) is degenerate (DegenerateCorner).
+  double degenerateCornerDeg = 179.0;
+  /// A mesh passes when at most this share of its elements fails a criterion (and no element is
+  /// folded or has a degenerate corner, the triangle share and the distance are within limits).
+  double maxFailingShare = 0.05;
 };
 
 /// Checks that every field of the settings is finite and in its meaningful range (angles within
@@ -122,16 +140,24 @@ enum class Criterion : std::uint8_t {
   ScaledJacobian,
   Taper,
   MinLength,
+  DegenerateCorner,
+  Folded,    ///< needs the element's neighbours (foldedFaces)
+  Distance,  ///< needs the original surface
 };
-constexpr int kCriterionCount = 11;
+/// The criteria elementFailures decides from an element's own corners (Warping ..
+/// DegenerateCorner).
+constexpr int kElementCriterionCount = 12;
+/// All criteria; Folded and Distance are decided by assessQuality from the whole mesh.
+constexpr int kCriterionCount = 14;
 
 /// A short name of a criterion ("warping", "aspect", "quad_min_angle", ...), also the JSON key
 /// and the .vtu array name of its metric.
 const char* criterionName(Criterion criterion);
 
-/// The criteria an element with these metrics fails under the settings: bit c set when Criterion
-/// c applies to the element (quads: all but the triangle angles; triangles: aspect, triangle
-/// angles, skew, scaled Jacobian, length) and its value is beyond the limit (NaN fails).
+/// The element criteria (the first kElementCriterionCount) an element with these metrics fails
+/// under the settings: bit c set when Criterion c applies to the element (quads: all but the
+/// triangle angles; triangles: aspect, triangle angles, skew, scaled Jacobian, length) and its
+/// value is beyond the limit (NaN fails).
 /// Precondition: corners is 3 or 4; settings.targetSize > 0 for the length limit to mean anything.
 std::uint32_t elementFailures(const ElementQuality& quality, int corners,
                               const QualitySettings& settings);
@@ -148,23 +174,47 @@ struct CriterionSummary {
 };
 
 /// The two-sided distance between a mesh and an original surface.
-/// Samples: the points of a mesh, the midpoints of its distinct edges and the centroids of its
-/// faces; each sample's distance is the exact distance to the other surface (its triangles, quads
-/// split along p0-p2). Max and mean are over the samples of one side.
+/// Samples: the points of a mesh, the midpoints of its distinct edges and points inside its faces:
+/// each face's triangles (quads split along p0-p2) cut into k x k similar triangles, k the
+/// smallest count that makes their sides at most the sample spacing (at least 2, at most 64), and
+/// the centroid of each taken. Each sample's distance is the exact distance to the other surface.
+/// Max and mean are over the samples of one side.
 struct SurfaceDistance {
   double maxToOriginal = 0.0;  ///< samples of the mesh -> original
   double meanToOriginal = 0.0;
   double maxFromOriginal = 0.0;  ///< samples of the original -> mesh
   double meanFromOriginal = 0.0;
   std::vector<double> pointDistance;  ///< per mesh point, its distance to the original
+  /// Per mesh face: the largest distance of its corners and inner samples to the original, and
+  /// of the original's samples whose closest point lies on it.
+  std::vector<double> faceDistance;
   /// The two-sided (Hausdorff) distance.
   double max() const { return maxToOriginal > maxFromOriginal ? maxToOriginal : maxFromOriginal; }
 };
 
 /// Computes the two-sided distance between `mesh` and `original` (see SurfaceDistance), with
 /// queries in parallel; deterministic.
+/// @param sampleSpacing  the largest spacing of the samples inside faces; 0: two per triangle side
 /// Preconditions: both meshes have faces naming existing points (std::invalid_argument otherwise).
-SurfaceDistance surfaceDistance(const QuadMesh& mesh, const QuadMesh& original);
+SurfaceDistance surfaceDistance(const QuadMesh& mesh, const QuadMesh& original,
+                                double sampleSpacing = 0.0);
+
+/// Per face of the mesh, 1 when it is folded (see "Folded" at the top of the file), else 0.
+/// Faces with a zero normal and faces without a neighbour are not folded. Preconditions: faces
+/// name existing points.
+std::vector<std::uint8_t> foldedFaces(const QuadMesh& mesh);
+
+/// Connected pieces and boundary loops of a mesh, as the acceptance of a remeshed part compares
+/// them with the original part.
+struct TopologyCounts {
+  std::size_t components = 0;     ///< sets of points joined by face edges (used points only)
+  std::size_t boundaryLoops = 0;  ///< sets of points joined by boundary edges (edges of one face);
+                                  ///< loops touching at a point count once
+};
+
+/// Counts the components and boundary loops of a mesh (see TopologyCounts). Preconditions: faces
+/// name existing points.
+TopologyCounts topologyCounts(const QuadMesh& mesh);
 
 /// The quality of a whole mesh against the settings.
 struct QualityReport {
@@ -181,13 +231,17 @@ struct QualityReport {
   std::optional<SurfaceDistance> distance;     ///< when an original was given
   double distanceLimit = 0.0;                  ///< maxDistanceFactor x targetSize
 
-  /// The mesh passes: no element fails, the triangle share and (if measured) the distance are
+  /// The mesh passes: at most settings.maxFailingShare of its elements fail a criterion, none is
+  /// folded or has a degenerate corner, and the triangle share and (if measured) the distance are
   /// within their limits.
   bool passes() const;
+  /// Elements failing criterion c.
+  std::size_t failing(Criterion c) const { return criteria[static_cast<int>(c)].failing; }
 };
 
-/// Assesses a mesh: element metrics, per-criterion summaries, triangle share, and the distance to
-/// `original` when it is not null.
+/// Assesses a mesh: element metrics, per-criterion summaries (folded elements included), triangle
+/// share, and the distance to `original` when it is not null (sampled inside the faces at half
+/// the target size at most; elements beyond the limit fail Distance).
 /// @param mesh      the mesh; faces name existing points
 /// @param settings  thresholds (checked with checkQualitySettings)
 /// @param original  the surface the mesh should stay close to, or nullptr

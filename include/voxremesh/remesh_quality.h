@@ -49,8 +49,9 @@ struct PartQuality {
 /// @param remeshed  the deck after remeshDeck
 /// @param remesh    what remeshDeck returned: its parts and their target sizes
 /// @param settings  the limits (quality.h defaults); targetSize is replaced per part by the
-///                  part's target size
-/// @return one entry per part of remesh.parts, in that order
+///                  size the part was remeshed at (RemeshedPart::voxelSize)
+/// @return one entry per remeshed or retried part of remesh.parts (kept parts are left out), in
+///         that order
 /// Throws SettingError for bad settings; std::runtime_error naming the deck when a part has no
 /// shells in one of the decks or a shell names an undefined node.
 std::vector<PartQuality> assessRemeshedParts(const FeModel& original, const FeModel& remeshed,

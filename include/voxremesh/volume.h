@@ -69,7 +69,8 @@ struct VolumeSettings {
   /// interior (the element wins). In [0, 0.01].
   double tieToleranceVoxels = 1e-4;
   /// Refuse settings whose estimated peak memory exceeds this many bytes; 0 (the default) means
-  /// half of the physical memory of this machine.
+  /// half of the physical memory of this machine or of the address-space limit (ulimit -v),
+  /// whichever is lower.
   std::uint64_t memoryLimitBytes = 0;
 };
 

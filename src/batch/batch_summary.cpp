@@ -80,12 +80,13 @@ std::string batchSummaryCsv(const std::vector<BatchJob>& jobs,
 
 std::string batchSummaryJson(const std::vector<BatchJob>& jobs,
                              const std::vector<BatchResult>& results) {
-  std::size_t ok = 0, failed = 0, skipped = 0;
+  std::size_t ok = 0, shortJobs = 0, failed = 0, skipped = 0;
   std::string items;
   for (std::size_t j = 0; j < jobs.size() && j < results.size(); ++j) {
     const std::string& status = results[j].status;
     if (status == "other-shard") continue;
     ok += status == "ok" ? 1 : 0;
+    shortJobs += status == "short" ? 1 : 0;
     failed += status == "failed" ? 1 : 0;
     skipped += status == "skipped" ? 1 : 0;
     std::string object;
@@ -96,7 +97,8 @@ std::string batchSummaryJson(const std::vector<BatchJob>& jobs,
     items += (items.empty() ? "\n    " : ",\n    ") + object + "}";
   }
   return "{\n  \"jobs\": [" + items + (items.empty() ? "" : "\n  ") +
-         "],\n  \"ok\": " + std::to_string(ok) + ",\n  \"failed\": " + std::to_string(failed) +
+         "],\n  \"ok\": " + std::to_string(ok) + ",\n  \"short\": " + std::to_string(shortJobs) +
+         ",\n  \"failed\": " + std::to_string(failed) +
          ",\n  \"skipped\": " + std::to_string(skipped) + "\n}\n";
 }
 

@@ -134,7 +134,13 @@ void runRemesh(const BatchJob& job, const JobSettings& settings, BatchResult& re
   result.qualityFailures = failing;
   result.qualityFailureShare = assessed ? double(failing) / double(assessed) : 0.0;
   result.maxDistance = distance;
-  result.message = std::to_string(report.parts.size()) + " parts remeshed";
+  result.partsKept = report.count(PartStatus::Kept);
+  result.message = std::to_string(report.count(PartStatus::Remeshed)) + " parts remeshed, " +
+                   std::to_string(report.count(PartStatus::Retried)) + " retried, " +
+                   std::to_string(report.count(PartStatus::Kept)) + " kept";
+  for (const RemeshedPart& part : report.parts)
+    if (part.status == PartStatus::Kept)
+      result.message += "; part " + std::to_string(part.plan.part) + " kept: " + part.reason;
 }
 
 void runChainJob(const BatchJob& job, BatchResult& result) {
@@ -192,7 +198,7 @@ BatchResult runJob(const BatchJob& job, const BatchOptions& options) {
         runChainJob(job, result);
         break;
     }
-    result.status = "ok";
+    result.status = result.partsKept.value_or(0) > 0 ? "short" : "ok";
   } catch (const std::bad_alloc&) {
     result.status = "failed";
     result.message = "out of memory";

@@ -49,11 +49,12 @@ Id choosePart(const FeModel& model, Id requested, const std::string& deckName,
 
 namespace {
 
-/// defaultTargetSize with the node index given (built once for many parts).
+/// The median edge of the shells of `part` (of all shells when part is 0), with the node index
+/// given (built once for many parts).
 double medianEdge(const FeModel& model, const std::unordered_map<Id, std::size_t>& index, Id part) {
   std::vector<double> lengths;
   for (const Shell& shell : model.shells) {
-    if (shell.part != part) continue;
+    if (part != 0 && shell.part != part) continue;
     for (int c = 0; c < shell.nodeCount; ++c) {
       const auto& a = model.nodes[index.at(shell.nodes[static_cast<std::size_t>(c)])].xyz;
       const auto& b =
@@ -63,8 +64,8 @@ double medianEdge(const FeModel& model, const std::unordered_map<Id, std::size_t
                                   (a[2] - b[2]) * (a[2] - b[2])));
     }
   }
-  if (lengths.empty())
-    throw std::invalid_argument("part " + std::to_string(part) + " has no shells");
+  const std::string what = part != 0 ? "part " + std::to_string(part) : std::string("the deck");
+  if (lengths.empty()) throw std::invalid_argument(what + " has no shells");
   const std::size_t middle = lengths.size() / 2;
   std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(middle),
                    lengths.end());
@@ -74,8 +75,7 @@ double medianEdge(const FeModel& model, const std::unordered_map<Id, std::size_t
                                          lengths.begin() + static_cast<std::ptrdiff_t>(middle))) /
              2;
   if (!(median > 0))
-    throw std::invalid_argument("the shells of part " + std::to_string(part) +
-                                " have zero-length sides only");
+    throw std::invalid_argument("the shells of " + what + " have zero-length sides only");
   return median;
 }
 
@@ -83,6 +83,10 @@ double medianEdge(const FeModel& model, const std::unordered_map<Id, std::size_t
 
 double defaultTargetSize(const FeModel& model, Id part) {
   return medianEdge(model, model.nodeIndex(), part);
+}
+
+double deckTargetSize(const FeModel& model) {
+  return medianEdge(model, model.nodeIndex(), 0);
 }
 
 std::vector<PartPlan> planRemesh(const FeModel& model, const RemeshSettings& settings) {
@@ -96,9 +100,18 @@ std::vector<PartPlan> planRemesh(const FeModel& model, const RemeshSettings& set
   std::vector<Id> chosen = settings.parts.empty() ? withShells : settings.parts;
   std::sort(chosen.begin(), chosen.end());
   chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
+  for (const auto& [part, size] : settings.partSizes)
+    if (!std::isfinite(size) || size <= 0)
+      throw SettingError("the target size of part " + std::to_string(part) +
+                         " must be a positive number (got " + std::to_string(size) + ")");
+  if (settings.retries < 0 || settings.retries > 8)
+    throw SettingError("the number of retries must be within 0..8");
+  if (!(settings.narrowFeatureVoxels >= 0 && settings.narrowFeatureVoxels <= 16))
+    throw SettingError("the narrow-feature width must be within 0..16 voxels");
+  if (!(settings.finestVoxelShare > 0 && settings.finestVoxelShare <= 1))
+    throw SettingError("the finest voxel share must be within (0, 1]");
   std::vector<PartPlan> plans;
-  std::unordered_map<Id, std::size_t> index;
-  if (!(settings.targetSize > 0)) index = model.nodeIndex();
+  const double deckSize = settings.targetSize > 0 ? settings.targetSize : deckTargetSize(model);
   std::unordered_map<Id, std::size_t> shellCount;
   for (const Shell& shell : model.shells) ++shellCount[shell.part];
   for (const Id part : chosen) {
@@ -110,10 +123,14 @@ std::vector<PartPlan> planRemesh(const FeModel& model, const RemeshSettings& set
     plan.part = part;
     if (const Part* found = model.findPart(part)) plan.name = found->name;
     plan.shells = shellCount[part];
-    plan.targetSize =
-        settings.targetSize > 0 ? settings.targetSize : medianEdge(model, index, part);
+    const auto size = settings.partSizes.find(part);
+    plan.targetSize = size != settings.partSizes.end() ? size->second : deckSize;
     plans.push_back(std::move(plan));
   }
+  for (const auto& [part, size] : settings.partSizes)
+    if (!std::binary_search(chosen.begin(), chosen.end(), part))
+      throw SettingError("a size is given for part " + std::to_string(part) +
+                         ", which is not remeshed; parts with shells: " + listIds(withShells));
   return plans;
 }
 

@@ -11,13 +11,13 @@
 #include <unordered_map>
 
 #include <unordered_set>
-#include "voxremesh/reference_surface.h"
 
 #include "io/atomic_file.h"
 #include "json/json.h"
+#include "pipeline/remesh_part.h"
+#include "voxremesh/deck_assembly.h"
 #include "voxremesh/errors.h"
 #include "voxremesh/pipeline.h"
-#include "voxremesh/reference_surface.h"
 
 namespace voxremesh {
 
@@ -25,24 +25,6 @@ namespace {
 
 double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-/// Rethrows `error` with "part ID: " before its message, keeping InputError and SettingError.
-[[noreturn]] void rethrowForPart(const std::exception_ptr& error, Id part) {
-  const std::string prefix = "part " + std::to_string(part) + ": ";
-  try {
-    std::rethrow_exception(error);
-  } catch (const InputError&) {
-    throw;
-  } catch (const SettingError& e) {
-    throw SettingError(prefix + e.what());
-  } catch (const std::bad_alloc&) {
-    throw;
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(prefix + e.what());
-  } catch (const std::exception& e) {
-    throw std::runtime_error(prefix + e.what());
-  }
 }
 
 /// For each plan, a model holding the part's shells plus the shells of other parts that share a
@@ -97,18 +79,47 @@ std::vector<FeModel> partModels(const FeModel& deck, const std::vector<PartPlan>
   return models;
 }
 
-/// The faces of a sheet as a mesh, the surface its new mesh is projected on.
-QuadMesh sheetSurface(const Sheet& sheet) {
-  QuadMesh mesh;
-  mesh.part = sheet.part;
-  mesh.points = sheet.points;
-  mesh.faces.reserve(sheet.faces.size());
-  for (const auto& face : sheet.faces)
-    mesh.faces.push_back({face[0], face[1], face[2], face[3] == kNoPoint ? kNoCorner : face[3]});
-  return mesh;
+/// Per plan, the shells of the part that lie on faces of solid elements (all corners are nodes
+/// of solid elements).
+std::vector<std::size_t> shellsOnSolids(const FeModel& deck, const std::vector<PartPlan>& plans) {
+  std::unordered_map<Id, std::size_t> planOf;
+  for (std::size_t i = 0; i < plans.size(); ++i) planOf[plans[i].part] = i;
+  std::unordered_set<Id> nodes;
+  for (const Shell& shell : deck.shells)
+    if (planOf.count(shell.part))
+      for (int c = 0; c < shell.nodeCount; ++c) nodes.insert(shell.nodes[std::size_t(c)]);
+  const std::unordered_set<Id> solid = solidElementNodes(deck, nodes);
+  std::vector<std::size_t> count(plans.size(), 0);
+  if (solid.empty()) return count;
+  for (const Shell& shell : deck.shells) {
+    const auto it = planOf.find(shell.part);
+    if (it == planOf.end()) continue;
+    bool onSolid = true;
+    for (int c = 0; c < shell.nodeCount && onSolid; ++c)
+      onSolid = solid.count(shell.nodes[std::size_t(c)]) > 0;
+    if (onSolid) ++count[it->second];
+  }
+  return count;
 }
 
 }  // namespace
+
+const char* partStatusName(PartStatus status) {
+  switch (status) {
+    case PartStatus::Remeshed:
+      return "remeshed";
+    case PartStatus::Retried:
+      return "retried";
+    case PartStatus::Kept:
+      return "kept";
+  }
+  return "kept";
+}
+
+std::size_t RemeshReport::count(PartStatus status) const {
+  return static_cast<std::size_t>(std::count_if(
+      parts.begin(), parts.end(), [&](const RemeshedPart& part) { return part.status == status; }));
+}
 
 RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
                         const RemeshProgress& progress) {
@@ -118,8 +129,8 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
   report.parts.resize(plans.size());
   std::vector<double> junctionSpacing;
   const std::vector<FeModel> models = partModels(deck, plans, junctionSpacing);
+  const std::vector<std::size_t> onSolids = shellsOnSolids(deck, plans);
   std::vector<QuadMesh> meshes(plans.size());
-  std::vector<std::exception_ptr> errors(plans.size());
   std::mutex progressMutex;
   std::size_t done = 0;
   const auto tell = [&](const std::string& stage, Id part, bool finished) {
@@ -133,67 +144,55 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
   tbb::task_arena arena(threads);
   arena.execute([&] {
     tbb::parallel_for(std::size_t(0), plans.size(), [&](std::size_t i) {
-      RemeshedPart& part = report.parts[i];
-      part.plan = plans[i];
-      try {
-        tell("volume", plans[i].part, false);
-        auto stageStart = std::chrono::steady_clock::now();
-        const std::vector<SheetVolume> volumes = partVolumes(models[i], plans[i], settings);
-        part.volumeSeconds = since(stageStart);
-        std::vector<QuadMesh> sheetMeshes;
-        for (const SheetVolume& sheet : volumes) {
-          tell("extract", plans[i].part, false);
-          stageStart = std::chrono::steady_clock::now();
-          ExtractStats stats;
-          ExtractSettings extractSettings = settings.extract;
-          if (extractSettings.junctionSpacing <= 0.0)
-            extractSettings.junctionSpacing = junctionSpacing[i];
-          sheetMeshes.push_back(extractQuadMesh(sheet.volume, extractSettings, &stats));
-          addExtractStats(part.extract, stats);
-          part.extractSeconds += since(stageStart);
-          if (settings.optimize) {
-            tell("optimize", plans[i].part, false);
-            stageStart = std::chrono::steady_clock::now();
-            const ReferenceSurface original(sheetSurface(sheet.sheet));
-            OptimizeSettings optimizeSettings = settings.optimizeSettings;
-            optimizeSettings.quality.targetSize = plans[i].targetSize;
-            optimizeQuadMesh(sheetMeshes.back(), original, optimizeSettings);
-            part.optimizeSeconds += since(stageStart);
-          }
-        }
-        meshes[i] = joinAtJunctions(sheetMeshes);
-        meshes[i].part = plans[i].part;
-        for (const auto& face : meshes[i].faces)
-          (cornerCount(face) == 4 ? part.quads : part.trias)++;
-      } catch (...) {
-        errors[i] = std::current_exception();
+      if (onSolids[i] > 0) {
+        RemeshedPart& part = report.parts[i];
+        part.plan = plans[i];
+        part.reason = std::to_string(onSolids[i]) + " of its " + std::to_string(plans[i].shells) +
+                      " shells lie on faces of solid elements (remeshing would detach them)";
+      } else {
+        report.parts[i] =
+            pipeline::remeshPart(models[i], plans[i], settings, junctionSpacing[i], meshes[i],
+                                 [&](const char* stage) { tell(stage, plans[i].part, false); });
       }
       tell("extract", plans[i].part, true);
     });
   });
+  std::vector<QuadMesh> accepted;
   for (std::size_t i = 0; i < plans.size(); ++i)
-    if (errors[i]) rethrowForPart(errors[i], plans[i].part);
+    if (report.parts[i].status != PartStatus::Kept) accepted.push_back(std::move(meshes[i]));
   if (progress) progress("assemble", 0, 1.0);
   const auto assemblyStart = std::chrono::steady_clock::now();
-  report.assembly = replacePartMeshes(deck, meshes);
+  report.assembly = replacePartMeshes(deck, accepted);
   report.assemblySeconds = since(assemblyStart);
   report.totalSeconds = since(start);
   return report;
 }
 
 std::string remeshReportJson(const RemeshReport& report) {
-  std::string out = "{\n  \"parts\": [";
-  char buffer[512];
+  char buffer[1024];
+  std::snprintf(buffer, sizeof buffer,
+                "{\n  \"remeshed\": %zu,\n  \"retried\": %zu,\n  \"kept\": %zu,\n  \"parts\": [",
+                report.count(PartStatus::Remeshed), report.count(PartStatus::Retried),
+                report.count(PartStatus::Kept));
+  std::string out = buffer;
   for (std::size_t i = 0; i < report.parts.size(); ++i) {
     const RemeshedPart& part = report.parts[i];
+    const PartAcceptance& a = part.acceptance;
     std::snprintf(buffer, sizeof buffer,
-                  "%s\n    {\"part\": %lld, \"elements_before\": %zu, \"quads\": %zu, "
-                  "\"trias\": %zu, \"target_size\": %.17g, \"volume_seconds\": %.6f, "
-                  "\"extract_seconds\": %.6f}",
-                  i ? "," : "", static_cast<long long>(part.plan.part), part.plan.shells,
-                  part.quads, part.trias, part.plan.targetSize, part.volumeSeconds,
-                  part.extractSeconds);
+                  "%s\n    {\"part\": %lld, \"status\": \"%s\", \"elements_before\": %zu, "
+                  "\"quads\": %zu, \"trias\": %zu, \"target_size\": %.17g, \"voxel_size\": %.17g, "
+                  "\"attempts\": %d, \"failing\": %zu, \"failing_share\": %.6g, "
+                  "\"distance\": %.6g, \"distance_limit\": %.6g, \"folded\": %zu, "
+                  "\"degenerate_corners\": %zu, \"components\": [%zu, %zu], \"loops\": [%zu, %zu], "
+                  "\"volume_seconds\": %.6f, \"extract_seconds\": %.6f, "
+                  "\"optimize_seconds\": %.6f, \"reason\": ",
+                  i ? "," : "", static_cast<long long>(part.plan.part), partStatusName(part.status),
+                  part.plan.shells, part.quads, part.trias, part.plan.targetSize, part.voxelSize,
+                  part.attempts, a.failing, a.failingShare, a.distance, a.distanceLimit, a.folded,
+                  a.degenerateCorners, a.componentsBefore, a.componentsAfter, a.loopsBefore,
+                  a.loopsAfter, part.volumeSeconds, part.extractSeconds, part.optimizeSeconds);
     out += buffer;
+    out += json::quote(part.reason) + "}";
   }
   out += "\n  ],\n  \"remaps\": [";
   const AssemblyReport& assembly = report.assembly;

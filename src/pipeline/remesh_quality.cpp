@@ -82,11 +82,12 @@ std::vector<PartQuality> assessRemeshedParts(const FeModel& original, const FeMo
   std::vector<PartQuality> out;
   out.reserve(remesh.parts.size());
   for (const RemeshedPart& part : remesh.parts) {
+    if (part.status == PartStatus::Kept) continue;
     const Id id = part.plan.part;
     const FeModel before = partShells(original, id, "the original deck");
     const FeModel after = partShells(remeshed, id, "the remeshed deck");
     QualitySettings partSettings = settings;
-    partSettings.targetSize = part.plan.targetSize;
+    partSettings.targetSize = part.voxelSize;
     const QuadMesh originalMesh = quadMeshFromModel(before);
     PartQuality quality;
     quality.part = id;

@@ -25,7 +25,7 @@ struct CriterionRule {
 };
 
 /// The rules, in the order of Criterion.
-const CriterionRule kRules[kCriterionCount] = {
+const CriterionRule kRules[kElementCriterionCount] = {
     {"warping", &ElementQuality::warpingDeg, true, false, true, &QualitySettings::maxWarpingDeg},
     {"aspect", &ElementQuality::aspectRatio, true, true, true, &QualitySettings::maxAspectRatio},
     {"quad_min_angle", &ElementQuality::minAngleDeg, true, false, false,
@@ -44,7 +44,13 @@ const CriterionRule kRules[kCriterionCount] = {
     {"taper", &ElementQuality::taper, true, false, true, &QualitySettings::maxTaper},
     {"min_length", &ElementQuality::minLength, true, true, false,
      &QualitySettings::minLengthFactor},
+    {"degenerate_corner", &ElementQuality::maxAngleDeg, true, false, true,
+     &QualitySettings::degenerateCornerDeg},
 };
+
+/// The names of the criteria decided from the whole mesh, after the element criteria.
+const char* const kMeshCriterionNames[kCriterionCount - kElementCriterionCount] = {"folded",
+                                                                                   "distance"};
 
 /// The metric a criterion looks at under the settings.
 double ElementQuality::*valueOf(Criterion c, const QualitySettings& s) {
@@ -67,7 +73,9 @@ bool fails(double value, double limit, bool isMaximum) {
 }  // namespace
 
 const char* criterionName(Criterion c) {
-  return kRules[static_cast<int>(c)].name;
+  const int index = static_cast<int>(c);
+  return index < kElementCriterionCount ? kRules[index].name
+                                        : kMeshCriterionNames[index - kElementCriterionCount];
 }
 
 std::vector<ElementQuality> elementQualities(const QuadMesh& mesh) {
@@ -98,7 +106,7 @@ std::uint32_t elementFailures(const ElementQuality& quality, int corners,
   if (corners != 3 && corners != 4)
     throw std::invalid_argument("an element has 3 or 4 corners, not " + std::to_string(corners));
   std::uint32_t failures = 0;
-  for (int c = 0; c < kCriterionCount; ++c) {
+  for (int c = 0; c < kElementCriterionCount; ++c) {
     const auto criterion = static_cast<Criterion>(c);
     const CriterionRule& r = kRules[c];
     if (corners == 4 ? !r.quads : !r.triangles) continue;
@@ -109,9 +117,34 @@ std::uint32_t elementFailures(const ElementQuality& quality, int corners,
 }
 
 bool QualityReport::passes() const {
-  if (failingAny > 0 || triangleShare > settings.maxTriangleShare) return false;
+  if (failingAnyShare > settings.maxFailingShare || triangleShare > settings.maxTriangleShare)
+    return false;
+  if (failing(Criterion::Folded) > 0 || failing(Criterion::DegenerateCorner) > 0) return false;
   return !distance || distance->max() <= distanceLimit;
 }
+
+namespace {
+
+/// Adds the summary of a criterion decided from the whole mesh: `value` per element, failing
+/// where `fails` says so (a maximum criterion with the given limit).
+void addMeshCriterion(QualityReport& report, Criterion criterion, double limit,
+                      const std::vector<double>& value, const std::vector<std::uint8_t>& fails) {
+  CriterionSummary summary;
+  summary.criterion = criterion;
+  summary.limit = limit;
+  summary.isMaximum = true;
+  summary.applies = report.elements;
+  for (std::size_t f = 0; f < report.elements; ++f) {
+    summary.worst = std::max(summary.worst, value[f]);
+    if (!fails[f]) continue;
+    ++summary.failing;
+    report.elementFailures[f] |= 1u << static_cast<int>(criterion);
+  }
+  summary.share = report.elements ? double(summary.failing) / double(report.elements) : 0.0;
+  report.criteria.push_back(summary);
+}
+
+}  // namespace
 
 QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& settings,
                             const QuadMesh* original) {
@@ -127,7 +160,7 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
   report.elementValues = elementQualities(mesh);
   report.elements = mesh.faces.size();
   report.elementFailures.assign(report.elements, 0);
-  for (int c = 0; c < kCriterionCount; ++c) {
+  for (int c = 0; c < kElementCriterionCount; ++c) {
     const auto criterion = static_cast<Criterion>(c);
     const CriterionRule& r = kRules[c];
     CriterionSummary summary;
@@ -153,6 +186,20 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
     summary.share = report.elements ? double(summary.failing) / double(report.elements) : 0.0;
     report.criteria.push_back(summary);
   }
+  // Folded: the value is 1 for a folded element, the limit 0 (none allowed).
+  const std::vector<std::uint8_t> folded = foldedFaces(mesh);
+  addMeshCriterion(report, Criterion::Folded, 0.0,
+                   std::vector<double>(folded.begin(), folded.end()), folded);
+  report.distanceLimit = s.maxDistanceFactor * s.targetSize;
+  std::vector<double> faceDistance(report.elements, 0.0);
+  std::vector<std::uint8_t> far(report.elements, 0);
+  if (original) {
+    report.distance = surfaceDistance(mesh, *original, 0.5 * s.targetSize);
+    faceDistance = report.distance->faceDistance;
+    for (std::size_t f = 0; f < report.elements; ++f)
+      far[f] = faceDistance[f] > report.distanceLimit ? 1 : 0;
+  }
+  addMeshCriterion(report, Criterion::Distance, report.distanceLimit, faceDistance, far);
   for (std::size_t f = 0; f < report.elements; ++f) {
     if (cornerCount(mesh.faces[f]) == 4)
       ++report.quads;
@@ -164,8 +211,6 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
     report.failingAnyShare = double(report.failingAny) / double(report.elements);
     report.triangleShare = double(report.triangles) / double(report.elements);
   }
-  report.distanceLimit = s.maxDistanceFactor * s.targetSize;
-  if (original) report.distance = surfaceDistance(mesh, *original);
   return report;
 }
 

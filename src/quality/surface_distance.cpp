@@ -1,6 +1,7 @@
 // surfaceDistance: the two-sided distance between a mesh and an original surface, sampled at
-// points, edge midpoints and face centroids.
+// points, edge midpoints and points inside the faces (quality.h).
 #include <algorithm>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -14,31 +15,72 @@ using namespace geom;  // NOLINT: the vector operators
 
 namespace {
 
-/// The samples of a mesh: its points first, then its distinct edges' midpoints, then its faces'
-/// centroids.
-std::vector<std::array<double, 3>> samplesOf(const QuadMesh& mesh) {
-  std::vector<std::array<double, 3>> samples = mesh.points;
+using Point = std::array<double, 3>;
+
+/// Samples of a mesh and the face each one lies inside (kNoFace for points and edge midpoints).
+struct Samples {
+  static constexpr std::uint32_t kNoFace = ~std::uint32_t(0);
+  std::vector<Point> points;
+  std::vector<std::uint32_t> face;
+};
+
+/// The centroids of the k x k similar triangles triangle abc is cut into, k the smallest count
+/// that makes their sides at most `spacing` (2 .. 64; 2 when spacing is 0).
+void addInnerSamples(const Point& a, const Point& b, const Point& c, double spacing,
+                     std::uint32_t face, Samples& out) {
+  const double longest =
+      std::sqrt(std::max({dot(b - a, b - a), dot(c - b, c - b), dot(a - c, a - c)}));
+  int k = 2;
+  if (spacing > 0.0 && std::isfinite(longest / spacing))
+    k = std::clamp(static_cast<int>(std::ceil(longest / spacing)), 2, 64);
+  const Point u = (b - a) * (1.0 / k), v = (c - a) * (1.0 / k);
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; i + j < k; ++j) {
+      // The upright sub-triangle at (i, j) and, where it fits, the inverted one beside it.
+      out.points.push_back(a + u * (i + 1.0 / 3.0) + v * (j + 1.0 / 3.0));
+      out.face.push_back(face);
+      if (i + j + 1 < k) {
+        out.points.push_back(a + u * (i + 2.0 / 3.0) + v * (j + 2.0 / 3.0));
+        out.face.push_back(face);
+      }
+    }
+}
+
+/// The samples of a mesh: its points first, then its distinct edges' midpoints, then the points
+/// inside its faces' triangles (p0-p1-p2 and, for quads, p0-p2-p3).
+Samples samplesOf(const QuadMesh& mesh, double spacing) {
+  Samples samples;
+  samples.points = mesh.points;
+  samples.face.assign(mesh.points.size(), Samples::kNoFace);
   std::vector<std::pair<CornerIndex, CornerIndex>> edges;
   for (const auto& face : mesh.faces) {
     const int n = cornerCount(face);
-    std::array<double, 3> centroid{0.0, 0.0, 0.0};
     for (int k = 0; k < n; ++k) {
       const CornerIndex a = face[static_cast<std::size_t>(k)];
       const CornerIndex b = face[static_cast<std::size_t>((k + 1) % n)];
       edges.emplace_back(std::min(a, b), std::max(a, b));
-      centroid = centroid + mesh.points[a];
     }
-    samples.push_back(centroid * (1.0 / n));
   }
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  for (const auto& [a, b] : edges) samples.push_back((mesh.points[a] + mesh.points[b]) * 0.5);
+  for (const auto& [a, b] : edges) {
+    samples.points.push_back((mesh.points[a] + mesh.points[b]) * 0.5);
+    samples.face.push_back(Samples::kNoFace);
+  }
+  for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& face = mesh.faces[f];
+    addInnerSamples(mesh.points[face[0]], mesh.points[face[1]], mesh.points[face[2]], spacing, f,
+                    samples);
+    if (cornerCount(face) == 4)
+      addInnerSamples(mesh.points[face[0]], mesh.points[face[2]], mesh.points[face[3]], spacing, f,
+                      samples);
+  }
   return samples;
 }
 
 /// Max and mean of the distances of `samples` to `surface`; the hits are returned too.
 std::pair<double, double> maxAndMean(const ReferenceSurface& surface,
-                                     const std::vector<std::array<double, 3>>& samples,
+                                     const std::vector<Point>& samples,
                                      std::vector<SurfaceHit>& hits) {
   hits = surface.closestPoints(samples);
   double max = 0.0, sum = 0.0;
@@ -51,18 +93,31 @@ std::pair<double, double> maxAndMean(const ReferenceSurface& surface,
 
 }  // namespace
 
-SurfaceDistance surfaceDistance(const QuadMesh& mesh, const QuadMesh& original) {
+SurfaceDistance surfaceDistance(const QuadMesh& mesh, const QuadMesh& original,
+                                double sampleSpacing) {
   const ReferenceSurface originalSurface(original);
   const ReferenceSurface meshSurface(mesh);
   SurfaceDistance result;
+  result.faceDistance.assign(mesh.faces.size(), 0.0);
   if (originalSurface.empty() || meshSurface.empty()) return result;
   std::vector<SurfaceHit> hits;
+  const Samples ofMesh = samplesOf(mesh, sampleSpacing);
   std::tie(result.maxToOriginal, result.meanToOriginal) =
-      maxAndMean(originalSurface, samplesOf(mesh), hits);
+      maxAndMean(originalSurface, ofMesh.points, hits);
   result.pointDistance.resize(mesh.points.size());
   for (std::size_t i = 0; i < mesh.points.size(); ++i) result.pointDistance[i] = hits[i].distance;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int k = 0; k < cornerCount(mesh.faces[f]); ++k)
+      result.faceDistance[f] =
+          std::max(result.faceDistance[f], result.pointDistance[mesh.faces[f][std::size_t(k)]]);
+  for (std::size_t i = 0; i < hits.size(); ++i)
+    if (ofMesh.face[i] != Samples::kNoFace)
+      result.faceDistance[ofMesh.face[i]] =
+          std::max(result.faceDistance[ofMesh.face[i]], hits[i].distance);
   std::tie(result.maxFromOriginal, result.meanFromOriginal) =
-      maxAndMean(meshSurface, samplesOf(original), hits);
+      maxAndMean(meshSurface, samplesOf(original, sampleSpacing).points, hits);
+  for (const SurfaceHit& hit : hits)
+    result.faceDistance[hit.face] = std::max(result.faceDistance[hit.face], hit.distance);
   return result;
 }
 

@@ -1,4 +1,5 @@
 // Choosing the voxel size and refusing settings the machine cannot hold.
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -28,11 +29,18 @@ std::string number(double value) {
   return text;
 }
 
-std::uint64_t physicalMemory() {
+/// The memory this process may use: the physical memory, or the address-space limit
+/// (ulimit -v, prlimit --as) when that is lower.
+std::uint64_t usableMemory() {
   const long pages = ::sysconf(_SC_PHYS_PAGES);
   const long pageSize = ::sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || pageSize <= 0) return std::uint64_t{8} << 30;
-  return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(pageSize);
+  std::uint64_t memory = pages <= 0 || pageSize <= 0 ? std::uint64_t{8} << 30
+                                                     : static_cast<std::uint64_t>(pages) *
+                                                           static_cast<std::uint64_t>(pageSize);
+  rlimit limit{};
+  if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+    memory = std::min<std::uint64_t>(memory, limit.rlim_cur);
+  return memory;
 }
 
 void requirePositive(double value, const char* name) {
@@ -116,7 +124,7 @@ VolumeEstimate estimateVolume(const SurfaceMesh& mesh, double voxelSize,
   estimate.activeVoxels = mesh.area / (voxelSize * voxelSize) * slab;
   estimate.peakBytes = estimate.activeVoxels * kPeakBytesPerActiveVoxel;
   estimate.memoryLimit =
-      settings.memoryLimitBytes > 0 ? settings.memoryLimitBytes : physicalMemory() / 2;
+      settings.memoryLimitBytes > 0 ? settings.memoryLimitBytes : usableMemory() / 2;
   estimate.smallestVoxelSize =
       std::sqrt(mesh.area * slab * kPeakBytesPerActiveVoxel / double(estimate.memoryLimit));
   return estimate;

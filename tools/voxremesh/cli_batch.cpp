@@ -19,7 +19,8 @@ const char* const kUsage =
 const char* const kHelp =
     "Runs the jobs of a JSON job file in parallel within the thread budget. A job that fails\n"
     "(unreadable input, invalid setting, ...) is reported and the others still run; the exit\n"
-    "status is 1 when any job failed. Writes PREFIX.csv and PREFIX.json with one row per job:\n"
+    "status is 1 when any job failed, else 3 when a remesh job kept parts unchanged (status\n"
+    "\"short\"), else 0. Writes PREFIX.csv and PREFIX.json with one row per job:\n"
     "status, message, time, element counts and, for remesh jobs and chains with -quality, the\n"
     "elements failing a quality criterion, their share and the largest distance to the original.\n"
     "\n"
@@ -97,15 +98,17 @@ int runBatchCommand(const std::vector<std::string>& args) {
   const std::vector<BatchResult> results = runBatch(file.jobs, options);
   progress.clear();
   writeBatchSummaries(file.jobs, results, prefixText);
-  std::size_t ok = 0, failed = 0, skipped = 0;
+  std::size_t ok = 0, failed = 0, skipped = 0, shortJobs = 0;
   for (const BatchResult& result : results) {
     ok += result.status == "ok" ? 1 : 0;
+    shortJobs += result.status == "short" ? 1 : 0;
     failed += result.status == "failed" ? 1 : 0;
     skipped += result.status == "skipped" ? 1 : 0;
   }
-  printOutput(std::to_string(ok) + " ok, " + std::to_string(failed) + " failed, " +
-              std::to_string(skipped) + " skipped; summary in " + prefixText + ".csv and .json\n");
-  return failed > 0 ? 1 : 0;
+  printOutput(std::to_string(ok) + " ok, " + std::to_string(shortJobs) + " short, " +
+              std::to_string(failed) + " failed, " + std::to_string(skipped) +
+              " skipped; summary in " + prefixText + ".csv and .json\n");
+  return failed > 0 ? 1 : (shortJobs > 0 ? kExitShortfall : 0);
 }
 
 }  // namespace voxremesh::cli

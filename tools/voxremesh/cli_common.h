@@ -19,6 +19,10 @@
 
 namespace voxremesh::cli {
 
+/// The exit code of a command that did its work but fell short: `remesh` kept parts unchanged
+/// (or `batch` had such jobs), `quality` found the mesh failing its criteria.
+constexpr int kExitShortfall = 3;
+
 /// A subcommand: receives the arguments after its name; returns the exit code. Throws UsageError
 /// for a malformed command line, anything else derived from std::exception for a failure.
 using CommandFunction = int (*)(const std::vector<std::string>& args);

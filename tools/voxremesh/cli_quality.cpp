@@ -28,7 +28,9 @@ const char* const kHelp =
     "the minimum element length (LS-DYNA characteristic length); per mesh the share of trias and,\n"
     "with --original, the two-sided distance to the original surface. Prints a table (metric,\n"
     "limit, worst value, failing count and share). Definitions: include/voxremesh/quality.h.\n"
-    "The exit code is 0 whether or not the mesh passes (the table's last line, \"pass\" in JSON);\n"
+    "The mesh passes when at most --max-failing of its elements fail a criterion, none is folded\n"
+    "or has a corner of 180 degrees, and the tria share and distance are within their limits.\n"
+    "Exit code: 0 when it passes, 3 when it does not (the table's last line, \"pass\" in JSON);\n"
     "1 for unreadable input or bad limits, 2 for a malformed command line.\n"
     "\n"
     "options:\n"
@@ -45,6 +47,7 @@ const char* const kHelp =
     "  --tria-min-angle DEG [30]  --tria-max-angle DEG [120]  --skew DEG [40]\n"
     "  --jacobian R [0.6]  --scaled-jacobian R [0.3]  --taper T [0.6]\n"
     "  --min-length F [0.5 x size]  --tria-share S [0.05]  --distance F [0.25 x size]\n"
+    "  --degenerate-corner DEG [179]  --max-failing S [0.05]\n"
     "  --jacobian-at-gauss-points  the Jacobian ratio at the 2 x 2 Gauss points (HyperMesh's\n"
     "                        default) instead of the corners\n";
 
@@ -68,6 +71,8 @@ const LimitOption kLimits[] = {
     {"--min-length", &QualitySettings::minLengthFactor},
     {"--tria-share", &QualitySettings::maxTriangleShare},
     {"--distance", &QualitySettings::maxDistanceFactor},
+    {"--degenerate-corner", &QualitySettings::degenerateCornerDeg},
+    {"--max-failing", &QualitySettings::maxFailingShare},
     {"--size", &QualitySettings::targetSize},
 };
 
@@ -98,7 +103,9 @@ int runQuality(const std::vector<std::string>& args) {
                                        {"--taper", true},
                                        {"--min-length", true},
                                        {"--tria-share", true},
-                                       {"--distance", true}},
+                                       {"--distance", true},
+                                       {"--degenerate-corner", true},
+                                       {"--max-failing", true}},
                                       1, 1, kUsage);
 
   QualitySettings settings;
@@ -133,7 +140,7 @@ int runQuality(const std::vector<std::string>& args) {
   else
     printOutput(path + (part ? " part " + std::to_string(part) : std::string()) + "\n" +
                 formatQualityTable(report));
-  return 0;
+  return report.passes() ? 0 : kExitShortfall;
 }
 
 }  // namespace voxremesh::cli

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -19,8 +20,9 @@ namespace voxremesh::cli {
 namespace {
 
 const char* const kUsage =
-    "voxremesh remesh IN -o OUT [--size H] [--parts P1,P2,...] [--feature-angle DEG]\n"
-    "       [--threads N] [--report REPORT.json] [--vtu QUALITY.vtu] [--no-optimize] [--quiet]";
+    "voxremesh remesh IN -o OUT [--size H] [--part-size PID=H,...] [--parts P1,P2,...]\n"
+    "       [--feature-angle DEG] [--retries N] [--threads N] [--report REPORT.json]\n"
+    "       [--vtu QUALITY.vtu] [--no-optimize] [--quiet]";
 
 const char* const kHelp =
     "Remeshes every shell part of IN (or those of --parts) through a narrow-band volume: sheets,\n"
@@ -32,14 +34,22 @@ const char* const kHelp =
     "Every other part, element and keyword is written back untouched; new node and element IDs\n"
     "lie above all IDs of IN; keywords naming nodes of a remeshed part are remapped to the\n"
     "nearest new node (listed in --report; what cannot be remapped is printed as a warning and\n"
-    "its node kept). The output format follows OUT's extension. The summary gives per part the\n"
-    "elements before and after, the elements failing a quality criterion at the default limits\n"
-    "(voxremesh help quality; length and distance limits scale with the part's size), the\n"
-    "largest two-sided distance to the original shells and the time.\n"
+    "its node kept). The output format follows OUT's extension.\n"
+    "Each part ends remeshed (its mesh passed the acceptance), retried (passed at a finer voxel)\n"
+    "or kept (its original shells written back unchanged, with the reason). Acceptance: distance\n"
+    "to the original within 0.25 x size (sampled inside faces), no folded element, no quad corner\n"
+    "of 180 degrees, as many connected pieces and boundary loops as the original part, and at\n"
+    "most 5 % of the elements failing a quality criterion (voxremesh help quality; distance and\n"
+    "folds count). A sheet narrower than 3 voxels gets a finer voxel (a warning says so). The\n"
+    "summary gives per part the status, elements before and after, size used, failing share,\n"
+    "distance and time. Exit code: 0 when every part was remeshed or retried, 3 when some were\n"
+    "kept, 1 for errors (nothing is written), 2 for a malformed command line.\n"
     "\n"
     "options:\n"
     "  -o OUT                 the deck to write (required)\n"
-    "  --size H               target element size (default: per part, its median edge length)\n"
+    "  --size H               target element size (default: the deck's median edge length)\n"
+    "  --part-size PID=H,...  other target sizes for some parts\n"
+    "  --retries N            finer-voxel retries of a part that misses the acceptance (2)\n"
     "  --parts P1,P2,...      the parts to remesh (default: all parts with shells)\n"
     "  --feature-angle DEG    edges turning more than DEG are feature lines (default 45)\n"
     "  --threads N            threads (default: all cores)\n"
@@ -64,45 +74,78 @@ std::vector<Id> parseParts(const std::string& text) {
   return parts;
 }
 
-/// The per-part table: elements before and after, quads and trias, size, quality failures and
-/// their share, the largest distance to the original, and the part's time (all stages).
-std::string remeshSummary(const RemeshReport& report, const std::vector<PartQuality>& quality) {
+/// The per-part table: status, elements before and after, quads and trias, the size the mesh
+/// was judged at, failing share, distance, folds and the part's time (all stages); then the
+/// reason of every kept part and of every reduced voxel.
+std::string remeshSummary(const RemeshReport& report) {
   std::string text =
-      "  part   before    after    quads   trias     size   failing    share   max dist   time s\n";
+      "  part     status   before    after   trias      size   failing   distance  folded   "
+      "time s\n";
   char line[256];
-  for (std::size_t i = 0; i < report.parts.size(); ++i) {
-    const RemeshedPart& part = report.parts[i];
-    const PartQuality& q = quality[i];
-    std::snprintf(
-        line, sizeof line, "  %-6lld %6zu %8zu %8zu %7zu %8.4g %9zu %6.2f %% %10.4g %8.2f\n",
-        static_cast<long long>(part.plan.part), q.elementsBefore, q.elementsAfter, part.quads,
-        part.trias, part.plan.targetSize, q.failing(), 100.0 * q.failingShare(), q.maxDistance(),
-        part.volumeSeconds + part.extractSeconds + part.optimizeSeconds);
+  std::string reasons;
+  for (const RemeshedPart& part : report.parts) {
+    const PartAcceptance& a = part.acceptance;
+    const bool kept = part.status == PartStatus::Kept;
+    std::snprintf(line, sizeof line,
+                  "  %-8lld %-8s %6zu %8zu %7zu %9.4g %7.2f %% %10.4g %7zu %8.2f\n",
+                  static_cast<long long>(part.plan.part), partStatusName(part.status),
+                  part.plan.shells, kept ? part.plan.shells : a.elements, kept ? 0 : a.trias,
+                  kept ? part.plan.targetSize : part.voxelSize, kept ? 0.0 : 100.0 * a.failingShare,
+                  kept ? 0.0 : a.distance, kept ? std::size_t(0) : a.folded,
+                  part.volumeSeconds + part.extractSeconds + part.optimizeSeconds);
     text += line;
+    if (!part.reason.empty())
+      reasons += "  part " + std::to_string(part.plan.part) + " " + partStatusName(part.status) +
+                 ": " + part.reason + "\n";
   }
-  return text;
+  return text + reasons;
 }
 
 /// The last line: totals over the parts.
 std::string formatRemeshTotals(const std::string& output, const RemeshReport& report,
-                               const std::vector<PartQuality>& quality, double seconds) {
+                               double seconds) {
   std::size_t before = 0, after = 0, failing = 0;
-  double distance = 0.0;
-  for (const PartQuality& q : quality) {
-    before += q.elementsBefore;
-    after += q.elementsAfter;
-    failing += q.failing();
-    distance = std::max(distance, q.maxDistance());
+  double distanceShare = 0.0;
+  for (const RemeshedPart& part : report.parts) {
+    before += part.plan.shells;
+    if (part.status == PartStatus::Kept) {
+      after += part.plan.shells;
+      continue;
+    }
+    after += part.acceptance.elements;
+    failing += part.acceptance.failing;
+    distanceShare = std::max(distanceShare, part.acceptance.distance / part.voxelSize);
   }
   char line[512];
   std::snprintf(line, sizeof line,
-                "wrote %s: %zu parts remeshed, %zu -> %zu elements, %zu failing a quality "
-                "criterion (%.2f %%), max distance to the original %.4g, %zu node references "
-                "remapped, %zu not remappable, %.2f s\n",
-                output.c_str(), report.parts.size(), before, after, failing,
-                after ? 100.0 * double(failing) / double(after) : 0.0, distance,
-                report.assembly.remaps.size(), report.assembly.unmapped.size(), seconds);
+                "wrote %s: %zu parts remeshed, %zu retried at a finer voxel, %zu kept; %zu -> %zu "
+                "elements, %zu remeshed ones failing a criterion; largest distance %.3g x size; "
+                "%zu node references remapped, %zu not remappable, %.2f s\n",
+                output.c_str(), report.count(PartStatus::Remeshed),
+                report.count(PartStatus::Retried), report.count(PartStatus::Kept), before, after,
+                failing, distanceShare, report.assembly.remaps.size(),
+                report.assembly.unmapped.size(), seconds);
   return line;
+}
+
+/// Parses --part-size PID=H,PID=H.
+std::map<Id, double> parsePartSizes(const std::string& text) {
+  std::map<Id, double> sizes;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = text.find(',', start);
+    const std::string item =
+        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const std::size_t equals = item.find('=');
+    if (equals == std::string::npos)
+      throw SettingError("--part-size takes PID=SIZE pairs separated by commas, not '" + item +
+                         "'");
+    sizes[parseInteger("--part-size", item.substr(0, equals))] =
+        parseNumber("--part-size", item.substr(equals + 1));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return sizes;
 }
 
 }  // namespace
@@ -116,6 +159,8 @@ int runRemesh(const std::vector<std::string>& args) {
   const ParsedArgs parsed = parseArgs(args,
                                       {{"-o", true},
                                        {"--size", true},
+                                       {"--part-size", true},
+                                       {"--retries", true},
                                        {"--parts", true},
                                        {"--feature-angle", true},
                                        {"--threads", true},
@@ -130,6 +175,12 @@ int runRemesh(const std::vector<std::string>& args) {
   if (const auto size = parsed.value("--size")) settings.targetSize = parseNumber("--size", *size);
   if (settings.targetSize < 0) throw SettingError("--size must be positive");
   if (const auto parts = parsed.value("--parts")) settings.parts = parseParts(*parts);
+  if (const auto sizes = parsed.value("--part-size")) settings.partSizes = parsePartSizes(*sizes);
+  if (const auto retries = parsed.value("--retries")) {
+    const long long value = parseInteger("--retries", *retries);
+    if (value < 0 || value > 8) throw SettingError("--retries must be within 0..8");
+    settings.retries = static_cast<int>(value);
+  }
   settings.optimize = !parsed.has("--no-optimize");
   if (const auto angle = parsed.value("--feature-angle"))
     settings.sheets.featureAngleDeg = parseNumber("--feature-angle", *angle);
@@ -152,13 +203,15 @@ int runRemesh(const std::vector<std::string>& args) {
       remeshDeck(deck, settings, [&](const std::string& stage, Id part, double done) {
         progress.update(stage, part ? "part " + std::to_string(part) : "deck", done);
       });
-  progress.update("quality", "deck", 1.0);
-  std::vector<PartQuality> quality;
-  tbb::task_arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic)
-      .execute([&] { quality = assessRemeshedParts(original, deck, report); });
   warnings.clear();
   writeDeck(deck, *output, {}, &warnings);
-  if (vtu) writeRemeshQualityVtu(deck, quality, *vtu);
+  if (vtu) {
+    progress.update("quality", "deck", 1.0);
+    std::vector<PartQuality> quality;
+    tbb::task_arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic)
+        .execute([&] { quality = assessRemeshedParts(original, deck, report); });
+    writeRemeshQualityVtu(deck, quality, *vtu);
+  }
   if (const auto path = parsed.value("--report")) writeRemeshReport(report, *path);
   progress.clear();
   for (const UnmappedReference& ref : report.assembly.unmapped)
@@ -171,9 +224,8 @@ int runRemesh(const std::vector<std::string>& args) {
 
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  printOutput(remeshSummary(report, quality) +
-              formatRemeshTotals(*output, report, quality, seconds));
-  return 0;
+  printOutput(remeshSummary(report) + formatRemeshTotals(*output, report, seconds));
+  return report.allAccepted() ? 0 : kExitShortfall;
 }
 
 }  // namespace voxremesh::cli

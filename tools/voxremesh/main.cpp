@@ -52,7 +52,8 @@ void printHelp() {
       "  voxremesh --help         this text\n"
       "  voxremesh --version      the version\n"
       "  voxremesh -read IN -voxelize -write OUT.vdb ...   an action chain (voxremesh -help)\n\n"
-      "exit codes: 0 success, 1 error (bad input, failed write), 2 malformed command line\n");
+      "exit codes: 0 success, 1 error (bad input, failed write), 2 malformed command line,\n"
+      "3 done but short of the goal (remesh: parts kept unchanged; quality: the mesh fails)\n");
 }
 
 const Command* findCommand(const std::string& name) {

@@ -1,0 +1,132 @@
+// The acceptance of a part's new mesh, and the fold check against the sheet it came from
+// (remesh_part.h).
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+#include "geometry/vec3.h"
+#include "pipeline/remesh_part.h"
+#include "voxremesh/reference_surface.h"
+
+namespace voxremesh::pipeline {
+
+using namespace geom;  // NOLINT: the vector operators
+
+namespace {
+
+/// The unit normal of a face of corners p (triangle: (p1 - p0) x (p2 - p0); quad: the cross
+/// product of its diagonals); zero without area.
+Vec3 faceNormal(const std::vector<std::array<double, 3>>& points,
+                const std::array<CornerIndex, 4>& face, bool triangle) {
+  const Vec3 n = triangle
+                     ? cross(points[face[1]] - points[face[0]], points[face[2]] - points[face[0]])
+                     : cross(points[face[2]] - points[face[0]], points[face[3]] - points[face[1]]);
+  const double length = norm(n);
+  return length > 0.0 ? n * (1.0 / length) : Vec3{0.0, 0.0, 0.0};
+}
+
+std::string formatNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
+  return text;
+}
+
+/// The first failed check of an acceptance, in words (empty when all pass).
+std::string failedCheck(const PartAcceptance& a, const QualitySettings& settings) {
+  if (a.componentsAfter != a.componentsBefore)
+    return std::to_string(a.componentsAfter) + " connected pieces instead of " +
+           std::to_string(a.componentsBefore);
+  if (a.loopsAfter != a.loopsBefore)
+    return std::to_string(a.loopsAfter) + " boundary loops instead of " +
+           std::to_string(a.loopsBefore);
+  if (a.distance > a.distanceLimit)
+    return "distance to the original " + formatNumber(a.distance) + " over its limit " +
+           formatNumber(a.distanceLimit);
+  if (a.folded > 0) return std::to_string(a.folded) + " folded elements";
+  if (a.degenerateCorners > 0)
+    return std::to_string(a.degenerateCorners) + " quads with a corner of 180 degrees";
+  if (a.failingShare > settings.maxFailingShare)
+    return formatNumber(100.0 * a.failingShare) + " % of the elements fail a criterion (limit " +
+           formatNumber(100.0 * settings.maxFailingShare) + " %)";
+  return {};
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> foldedAgainstSheet(const QuadMesh& mesh, const Sheet& sheet) {
+  QuadMesh surface;
+  surface.points = sheet.points;
+  for (const auto& face : sheet.faces)
+    surface.faces.push_back({face[0], face[1], face[2], face[3] == kNoPoint ? kNoCorner : face[3]});
+  std::vector<std::uint8_t> folded(mesh.faces.size(), 0);
+  if (surface.faces.empty() || mesh.faces.empty()) return folded;
+  const ReferenceSurface reference(surface);
+  std::vector<std::array<double, 3>> centroids(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const int n = cornerCount(mesh.faces[f]);
+    Vec3 sum{0.0, 0.0, 0.0};
+    for (int k = 0; k < n; ++k) sum = sum + mesh.points[mesh.faces[f][std::size_t(k)]];
+    centroids[f] = sum * (1.0 / n);
+  }
+  const std::vector<SurfaceHit> hits = reference.closestPoints(centroids);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& own = mesh.faces[f];
+    const auto& closest = surface.faces[hits[f].face];
+    const double cosine = dot(faceNormal(mesh.points, own, cornerCount(own) == 3),
+                              faceNormal(surface.points, closest, cornerCount(closest) == 3));
+    folded[f] = cosine < -0.5 ? 1 : 0;
+  }
+  return folded;
+}
+
+double sheetWidth(const Sheet& sheet) {
+  double area = 0.0, boundary = 0.0;
+  for (const auto& face : sheet.faces) {
+    const bool triangle = face[3] == kNoPoint;
+    const auto& p = sheet.points;
+    area += 0.5 * norm(triangle ? cross(p[face[1]] - p[face[0]], p[face[2]] - p[face[0]])
+                                : cross(p[face[2]] - p[face[0]], p[face[3]] - p[face[1]]));
+  }
+  for (const Polyline& loop : sheet.boundaryLoops)
+    for (std::size_t i = 0; i < loop.points.size(); ++i) {
+      if (!loop.closed && i + 1 == loop.points.size()) break;
+      boundary += norm(sheet.points[loop.points[(i + 1) % loop.points.size()]] -
+                       sheet.points[loop.points[i]]);
+    }
+  return boundary > 0.0 ? 2.0 * area / boundary : std::numeric_limits<double>::infinity();
+}
+
+PartAcceptance acceptPartMesh(const QuadMesh& mesh, const QuadMesh& original,
+                              const std::vector<std::uint8_t>& foldedAgainstOriginal, double size,
+                              const QualitySettings& settings) {
+  QualitySettings judged = settings;
+  judged.targetSize = size;
+  const QualityReport report = assessQuality(mesh, judged, &original);
+  PartAcceptance a;
+  a.size = size;
+  a.elements = report.elements;
+  a.quads = report.quads;
+  a.trias = report.triangles;
+  a.distance = report.distance ? report.distance->max() : 0.0;
+  a.distanceLimit = report.distanceLimit;
+  a.degenerateCorners = report.failing(Criterion::DegenerateCorner);
+  const std::uint32_t foldBit = 1u << static_cast<int>(Criterion::Folded);
+  for (std::size_t f = 0; f < report.elements; ++f) {
+    const bool againstOriginal = f < foldedAgainstOriginal.size() && foldedAgainstOriginal[f];
+    const std::uint32_t failures = report.elementFailures[f] | (againstOriginal ? foldBit : 0u);
+    if (failures & foldBit) ++a.folded;
+    if (failures) ++a.failing;
+  }
+  a.failingShare = a.elements ? double(a.failing) / double(a.elements) : 0.0;
+  const TopologyCounts before = topologyCounts(original), after = topologyCounts(mesh);
+  a.componentsBefore = before.components;
+  a.componentsAfter = after.components;
+  a.loopsBefore = before.boundaryLoops;
+  a.loopsAfter = after.boundaryLoops;
+  a.reason = failedCheck(a, judged);
+  a.accepted = a.reason.empty();
+  return a;
+}
+
+}  // namespace voxremesh::pipeline

@@ -1,0 +1,49 @@
+// One part of remeshDeck: its sheets, the voxel size that resolves them, the attempts at finer
+// voxels and the acceptance of each attempt's mesh (pipeline.h). Internal to src/pipeline.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "voxremesh/pipeline.h"
+#include "voxremesh/quality.h"
+
+namespace voxremesh::pipeline {
+
+/// Checks a part's new mesh against the part's original shells (DESIGN.md, "Acceptance of a
+/// remeshed part"): assessQuality at `size` (distance sampled inside faces, folds, degenerate
+/// corners, failing share), the faces in `foldedAgainstOriginal` (one flag per face of `mesh`,
+/// or empty) counted as folded too, and the components and boundary loops of both.
+/// @param mesh      the part's new mesh, faces naming existing points
+/// @param original  the part's original shells as a mesh
+/// @param size      the element size the mesh is judged against (> 0)
+/// @param settings  the limits; targetSize is replaced by `size`
+/// Throws SettingError for bad settings.
+PartAcceptance acceptPartMesh(const QuadMesh& mesh, const QuadMesh& original,
+                              const std::vector<std::uint8_t>& foldedAgainstOriginal, double size,
+                              const QualitySettings& settings);
+
+/// Per face of `mesh` (extracted from `sheet`, oriented like it), 1 when its normal points
+/// against (more than 120 degrees from) the normal of the sheet's face closest to its centroid.
+std::vector<std::uint8_t> foldedAgainstSheet(const QuadMesh& mesh, const Sheet& sheet);
+
+/// The width of a sheet as a strip: 2 x area / boundary length (infinite without boundary).
+double sheetWidth(const Sheet& sheet);
+
+/// Called with the stage a part enters ("volume", "extract", "optimize").
+using StageCallback = std::function<void(const char* stage)>;
+
+/// Remeshes one part: its sheets; a voxel of the plan's target size, reduced where a sheet is
+/// narrower than settings.narrowFeatureVoxels voxels; up to 1 + settings.retries attempts, each
+/// at half the voxel of the one before (never below settings.finestVoxelShare x target size),
+/// until a mesh passes acceptPartMesh. Never throws for the part's own failures: they end as
+/// status Kept with the reason (std::bad_alloc and a refused memory budget end the attempts).
+/// @param model            the part's shells and the shells sharing nodes with them
+/// @param plan             the part
+/// @param junctionSpacing  the node spacing on the part's junction curves
+/// @param mesh             receives the accepted mesh (cleared when the part is kept)
+RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const RemeshSettings& settings,
+                        double junctionSpacing, QuadMesh& mesh, const StageCallback& stage);
+
+}  // namespace voxremesh::pipeline

@@ -1,0 +1,67 @@
+// topologyCounts: components and boundary loops of a mesh (quality.h).
+#include <algorithm>
+#include <numeric>
+#include <utility>
+#include <vector>
+
+#include "voxremesh/quality.h"
+
+namespace voxremesh {
+
+namespace {
+
+/// Union-find over point indices.
+class DisjointSets {
+ public:
+  explicit DisjointSets(std::size_t n) : parent_(n) {
+    std::iota(parent_.begin(), parent_.end(), std::size_t(0));
+  }
+  std::size_t find(std::size_t x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  void join(std::size_t a, std::size_t b) { parent_[find(a)] = find(b); }
+
+ private:
+  std::vector<std::size_t> parent_;
+};
+
+/// The number of distinct sets among the flagged points.
+std::size_t setsAmong(DisjointSets& sets, const std::vector<bool>& flagged) {
+  std::vector<std::size_t> roots;
+  for (std::size_t p = 0; p < flagged.size(); ++p)
+    if (flagged[p]) roots.push_back(sets.find(p));
+  std::sort(roots.begin(), roots.end());
+  return static_cast<std::size_t>(std::unique(roots.begin(), roots.end()) - roots.begin());
+}
+
+}  // namespace
+
+TopologyCounts topologyCounts(const QuadMesh& mesh) {
+  const std::size_t n = mesh.points.size();
+  DisjointSets pieces(n), loops(n);
+  std::vector<bool> used(n, false), onBoundary(n, false);
+  std::vector<std::pair<CornerIndex, CornerIndex>> edges;
+  for (const auto& face : mesh.faces) {
+    const int corners = cornerCount(face);
+    for (int k = 0; k < corners; ++k) {
+      const CornerIndex a = face[std::size_t(k)], b = face[std::size_t((k + 1) % corners)];
+      used[a] = true;
+      pieces.join(a, b);
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) {
+      loops.join(edges[i].first, edges[i].second);
+      onBoundary[edges[i].first] = onBoundary[edges[i].second] = true;
+    }
+    i = j;
+  }
+  return {setsAmong(pieces, used), setsAmong(loops, onBoundary)};
+}
+
+}  // namespace voxremesh
