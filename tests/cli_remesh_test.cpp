@@ -227,3 +227,20 @@ TEST(RemeshCli, BadInputEndsWithAMessageAndNoOutput) {
   EXPECT_FALSE(fs::exists(dir / "a.k"));
   EXPECT_FALSE(fs::exists(dir / "a.xyz"));
 }
+
+TEST(RemeshCli, ShellsOnASolidMeshEndQuicklyWithinAnAddressSpaceLimit) {
+  // rot063: shells on every face of a hexahedral mesh (8,340 sheets). Once it grew past 20 GB
+  // until the system killed it; now, under a 2 GB address-space limit (which also lowers the
+  // memory budget), the part is kept with its reason, the deck written, exit code 3.
+  VOXREMESH_REQUIRE_SHARED_DECK(deck, "rot063akd2s_107.bdf");
+  const fs::path dir = scratchDir("remesh_rot063");
+  const test::CliResult run =
+      test::runShell("prlimit --as=2000000000 -- " + std::string(VOXREMESH_CLI) + " remesh " +
+                     quoted(deck) + " -o " + quoted(dir / "out.bdf") + " --quiet 2>&1");
+  EXPECT_EQ(run.exitCode, 3) << run.output;
+  EXPECT_TRUE(contains(run.output,
+                       "part 10000 kept: 8388 of its 8388 shells lie on faces of "
+                       "solid elements"))
+      << run.output;
+  EXPECT_EQ(readDeck(dir / "out.bdf").shells.size(), readDeck(deck).shells.size());
+}

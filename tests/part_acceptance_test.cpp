@@ -1,0 +1,155 @@
+// The acceptance of a remeshed part (defects planted in a grid, each caught with its reason) and
+// the fallback of remeshDeck (a part that cannot be meshed is kept, the rest of the deck written).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "pipeline/remesh_part.h"
+#include "support/test_support.h"
+#include "support/unit_grid.h"
+#include "voxremesh/io.h"
+#include "voxremesh/pipeline.h"
+
+using namespace voxremesh;
+
+namespace {
+
+/// acceptPartMesh at size 1 (distance limit 0.25) with the default limits.
+PartAcceptance accept(const QuadMesh& mesh, const QuadMesh& original) {
+  return pipeline::acceptPartMesh(mesh, original, {}, 1.0, QualitySettings{});
+}
+
+bool says(const PartAcceptance& a, const std::string& words) {
+  return a.reason.find(words) != std::string::npos;
+}
+
+/// The mesh without face f.
+QuadMesh withoutFace(QuadMesh mesh, std::size_t f) {
+  mesh.faces.erase(mesh.faces.begin() + static_cast<std::ptrdiff_t>(f));
+  return mesh;
+}
+
+TEST(PartAcceptance, TheOriginalItselfPasses) {
+  const QuadMesh grid = test::unitGrid(8);
+  const PartAcceptance a = accept(grid, grid);
+  EXPECT_TRUE(a.accepted) << a.reason;
+  EXPECT_EQ(a.componentsBefore, 1u);
+  EXPECT_EQ(a.loopsAfter, 1u);
+  EXPECT_NEAR(a.distance, 0.0, 1e-12);
+}
+
+TEST(PartAcceptance, APlantedFoldFails) {
+  // Point (4, 4) pulled across its diagonal neighbour (5, 5): the face between them turns over
+  // while it stays in the plane (no distance, no topology change).
+  QuadMesh mesh = test::unitGrid(8);
+  mesh.points[test::gridPoint(8, 4, 4)] = {5.6, 5.6, 0.0};
+  const PartAcceptance a = accept(mesh, test::unitGrid(8));
+  EXPECT_FALSE(a.accepted);
+  EXPECT_GE(a.folded, 1u);
+  EXPECT_TRUE(says(a, "folded")) << a.reason;
+  // A fold against the original's normal (from the sheet) counts on its own too.
+  const QuadMesh grid = test::unitGrid(8);
+  std::vector<std::uint8_t> flags(grid.faces.size(), 0);
+  flags[10] = 1;
+  const PartAcceptance b = pipeline::acceptPartMesh(grid, grid, flags, 1.0, QualitySettings{});
+  EXPECT_EQ(b.folded, 1u);
+  EXPECT_FALSE(b.accepted);
+}
+
+TEST(PartAcceptance, AQuadCornerOf180DegreesFails) {
+  // Point (4, 4) on the segment from (5, 4) to (4, 3): the face (4,3) (5,3) (5,4) (4,4) gets a
+  // straight corner there (CalculiX cannot estimate its normal).
+  QuadMesh mesh = test::unitGrid(8);
+  mesh.points[test::gridPoint(8, 4, 4)] = {4.5, 3.5, 0.0};
+  const PartAcceptance a = accept(mesh, test::unitGrid(8));
+  EXPECT_FALSE(a.accepted);
+  EXPECT_EQ(a.folded, 0u);
+  EXPECT_EQ(a.degenerateCorners, 1u);
+  EXPECT_TRUE(says(a, "180 degrees")) << a.reason;
+}
+
+TEST(PartAcceptance, ALostIslandFails) {
+  QuadMesh original = test::unitGrid(4);
+  const QuadMesh island = test::unitGrid(4);
+  const CornerIndex offset = static_cast<CornerIndex>(original.points.size());
+  for (auto p : island.points) original.points.push_back({p[0] + 10.0, p[1], p[2]});
+  for (auto face : island.faces) {
+    for (CornerIndex& corner : face) corner += offset;
+    original.faces.push_back(face);
+  }
+  const PartAcceptance a = accept(test::unitGrid(4), original);
+  EXPECT_FALSE(a.accepted);
+  EXPECT_EQ(a.componentsBefore, 2u);
+  EXPECT_EQ(a.componentsAfter, 1u);
+  EXPECT_TRUE(says(a, "1 connected pieces instead of 2")) << a.reason;
+}
+
+TEST(PartAcceptance, ALostHoleFails) {
+  const QuadMesh grid = test::unitGrid(8);
+  const QuadMesh holed = withoutFace(grid, 8 * 4 + 4);
+  const PartAcceptance a = accept(grid, holed);
+  EXPECT_FALSE(a.accepted);
+  EXPECT_EQ(a.loopsBefore, 2u);
+  EXPECT_TRUE(says(a, "1 boundary loops instead of 2")) << a.reason;
+}
+
+TEST(PartAcceptance, AnUncoveredRegionFails) {
+  // The mesh covers x = 0..7 of an original reaching x = 8: measured from the original's
+  // samples, 1 unit (four times the limit), though every node of the mesh lies on the original.
+  QuadMesh mesh = test::unitGrid(8);
+  for (auto& p : mesh.points) p[0] *= 7.0 / 8.0;
+  const PartAcceptance a = accept(mesh, test::unitGrid(8));
+  EXPECT_FALSE(a.accepted);
+  EXPECT_NEAR(a.distance, 1.0, 1e-9);
+  EXPECT_TRUE(says(a, "distance to the original 1 over its limit 0.25")) << a.reason;
+  EXPECT_GT(a.failing, 0u);  // the elements at the uncovered strip fail the distance criterion
+}
+
+TEST(PartAcceptance, APartThatCannotBeMeshedIsKeptAndTheRestWritten) {
+  // Part 1: a 40 x 40 plate of 4-unit quads; part 2: a Moebius strip of 24 quads beside it, which
+  // has no consistent orientation and so no signed distance.
+  FeModel model;
+  auto node = [](int i, int j) { return Id(1 + j * 11 + i); };
+  for (int j = 0; j <= 10; ++j)
+    for (int i = 0; i <= 10; ++i) test::addNode(model, node(i, j), 4.0 * i, 4.0 * j, 0.0);
+  Id shell = 1;
+  for (int j = 0; j < 10; ++j)
+    for (int i = 0; i < 10; ++i)
+      test::addShell(model, shell++, 1,
+                     {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)});
+  const int n = 24;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2.0 * 3.141592653589793 * i / n;
+    for (const double s : {-10.0, 10.0})
+      test::addNode(model, 500 + 2 * i + (s > 0),
+                    200.0 + (50.0 + s * std::cos(t / 2)) * std::cos(t),
+                    (50.0 + s * std::cos(t / 2)) * std::sin(t), s * std::sin(t / 2));
+  }
+  for (int i = 0; i + 1 < n; ++i)
+    test::addShell(model, 900 + i, 2, {500 + 2 * i, 501 + 2 * i, 503 + 2 * i, 502 + 2 * i});
+  test::addShell(model, 900 + n - 1, 2, {500 + 2 * (n - 1), 501 + 2 * (n - 1), 500, 501});
+  FeModel deck = model;
+  const RemeshReport report = remeshDeck(deck, RemeshSettings{});
+  ASSERT_EQ(report.parts.size(), 2u);
+  EXPECT_EQ(report.parts[0].status, PartStatus::Remeshed) << report.parts[0].reason;
+  EXPECT_EQ(report.parts[1].status, PartStatus::Kept);
+  EXPECT_NE(report.parts[1].reason.find("orient"), std::string::npos) << report.parts[1].reason;
+  EXPECT_FALSE(report.allAccepted());
+  const auto dir = test::scratchDir("acceptance_fallback");
+  writeDeck(deck, dir / "out.k");
+  const FeModel out = readDeck(dir / "out.k");
+  std::size_t plate = 0, kept = 0;
+  for (const Shell& s : out.shells) {
+    if (s.part == 1) ++plate;
+    if (s.part == 2 && s.id >= 900 && s.id < 900 + n) ++kept;
+  }
+  EXPECT_GT(plate, 0u);
+  EXPECT_EQ(kept, std::size_t(n));
+  const std::string json = remeshReportJson(report);
+  EXPECT_NE(json.find("\"status\": \"kept\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"kept\": 1"), std::string::npos) << json;
+}
+
+}  // namespace
