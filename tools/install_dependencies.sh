@@ -7,6 +7,7 @@ packages=(
   g++ cmake make ccache
   libopenvdb-dev libboost-iostreams-dev libtbb-dev libopenmesh-dev libgtest-dev zlib1g-dev
   libopenvdb-tools python3-openvdb
+  calculix-ccx  # tests/calculix_modes_test.cpp runs ccx on the original and remeshed decks
 )
 
 missing=()
