@@ -219,7 +219,9 @@ TEST(BatchCli, OneBrokenJobThenResume) {
   const auto first = runCli("batch " + quoted(dir / "jobs.json") + " --threads 2");
   EXPECT_EQ(first.exitCode, 1) << first.output;
   EXPECT_TRUE(contains(first.output, "FAILED broken")) << first.output;
-  EXPECT_TRUE(contains(first.output, "2 ok, 0 short, 2 failed, 0 skipped")) << first.output;
+  EXPECT_TRUE(
+      contains(first.output, "2 ok, 0 short, 2 failed, 0 skipped (0 with their earlier result)"))
+      << first.output;
   EXPECT_FALSE(contains(first.output, "\r"));  // no progress line off a terminal
   EXPECT_TRUE(fs::exists(dir / "out" / "hat_rail.bdf"));
   EXPECT_TRUE(fs::exists(dir / "out" / "obj.obj"));
@@ -229,7 +231,20 @@ TEST(BatchCli, OneBrokenJobThenResume) {
 
   const auto resumed = runCli("batch " + quoted(dir / "jobs.json") + " --resume");
   EXPECT_EQ(resumed.exitCode, 1);
-  EXPECT_TRUE(contains(resumed.output, "0 ok, 0 short, 2 failed, 2 skipped")) << resumed.output;
+  EXPECT_TRUE(
+      contains(resumed.output, "0 ok, 0 short, 2 failed, 2 skipped (2 with their earlier result)"))
+      << resumed.output;
+  // The skipped jobs keep their earlier results in the new summary.
+  const json::Json resumedSummary = json::parseJson(readText(dir / "jobs.summary.json"));
+  std::size_t restored = 0;
+  for (const json::Json& job : resumedSummary["jobs"].items) {
+    if (job["from_earlier_run"].type != json::Json::Type::Bool || !job["from_earlier_run"].boolean)
+      continue;
+    ++restored;
+    EXPECT_EQ(job["status"].text, "ok");
+    EXPECT_EQ(job["elements_out"].type, json::Json::Type::Number);
+  }
+  EXPECT_EQ(restored, 2u);
 
   // Sharded runs write their own summaries.
   const auto shard = runCli("batch " + quoted(dir / "jobs.json") + " --shard 0/2 --resume");

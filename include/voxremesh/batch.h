@@ -110,6 +110,8 @@ struct BatchResult {
   std::optional<double> qualityFailureShare;
   std::optional<double> maxDistance;
   std::optional<std::size_t> partsKept;  ///< remesh jobs: parts kept unchanged
+  /// A skipped job (resume) whose earlier result was restored from the earlier summary.
+  bool fromEarlierRun = false;
 };
 
 /// Runs the jobs of this shard in parallel within the thread budget; every job runs to its own
@@ -119,9 +121,9 @@ struct BatchResult {
 std::vector<BatchResult> runBatch(const std::vector<BatchJob>& jobs, const BatchOptions& options);
 
 /// The summary as CSV: a header line, then one line per job that ran or was skipped (other
-/// shards left out): index,name,task,input,output,status,message,seconds,elements_in,
-/// elements_out,quality_failures,quality_failure_share,max_distance (empty where unknown;
-/// RFC 4180 quoting).
+/// shards left out): index,name,task,input,output,status,message,seconds,from_earlier_run,
+/// elements_in,elements_out,quality_failures,quality_failure_share,max_distance (empty where
+/// unknown; RFC 4180 quoting).
 std::string batchSummaryCsv(const std::vector<BatchJob>& jobs,
                             const std::vector<BatchResult>& results);
 
@@ -134,6 +136,13 @@ std::string batchSummaryJson(const std::vector<BatchJob>& jobs,
 /// Throws std::runtime_error naming the path when one cannot be written.
 void writeBatchSummaries(const std::vector<BatchJob>& jobs, const std::vector<BatchResult>& results,
                          const std::string& prefix);
+
+/// On --resume: gives each skipped job the result the earlier summary (the JSON file
+/// writeBatchSummaries wrote) holds for the job with the same index and output, when it ended
+/// "ok" or "short": its status, message, time and figures, with fromEarlierRun set. Jobs without
+/// such an entry stay skipped. A missing, unreadable or invalid summary restores nothing.
+void restoreEarlierResults(const std::vector<BatchJob>& jobs, std::vector<BatchResult>& results,
+                           const std::filesystem::path& earlierSummary);
 
 /// The name of a task ("voxelize", "convert", "remesh", "chain").
 const char* taskName(BatchTask task);

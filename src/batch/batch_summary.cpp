@@ -1,8 +1,12 @@
 // The batch summary as CSV and JSON (batch.h).
 #include <charconv>
+#include <exception>
+#include <filesystem>
+#include <optional>
 #include <string>
 
 #include "io/atomic_file.h"
+#include "io/text_scan.h"
 #include "json/json.h"
 #include "voxremesh/batch.h"
 
@@ -44,6 +48,7 @@ std::vector<Field> fields(const BatchJob& job, const BatchResult& result) {
       {"status", result.status},
       {"message", result.message},
       {"seconds", shortest(result.seconds), true, true},
+      {"from_earlier_run", result.fromEarlierRun ? "true" : "false", true, true},
   };
   const char* names[] = {"elements_in", "elements_out", "quality_failures"};
   const std::optional<std::size_t>* values[] = {&result.elementsIn, &result.elementsOut,
@@ -66,7 +71,8 @@ std::vector<Field> fields(const BatchJob& job, const BatchResult& result) {
 std::string batchSummaryCsv(const std::vector<BatchJob>& jobs,
                             const std::vector<BatchResult>& results) {
   std::string text =
-      "index,name,task,input,output,status,message,seconds,elements_in,elements_out,"
+      "index,name,task,input,output,status,message,seconds,from_earlier_run,elements_in,elements_"
+      "out,"
       "quality_failures,quality_failure_share,max_distance\n";
   for (std::size_t j = 0; j < jobs.size() && j < results.size(); ++j) {
     if (results[j].status == "other-shard") continue;
@@ -106,6 +112,57 @@ void writeBatchSummaries(const std::vector<BatchJob>& jobs, const std::vector<Ba
                          const std::string& prefix) {
   io::writeFileAtomically(prefix + ".csv", batchSummaryCsv(jobs, results));
   io::writeFileAtomically(prefix + ".json", batchSummaryJson(jobs, results));
+}
+
+namespace {
+
+/// A count field of a summary entry, when it holds a number.
+std::optional<std::size_t> countOf(const json::Json& entry, const char* key) {
+  const json::Json* value = entry.find(key);
+  if (!value || value->type != json::Json::Type::Number) return std::nullopt;
+  return static_cast<std::size_t>(value->number);
+}
+
+std::optional<double> numberOf(const json::Json& entry, const char* key) {
+  const json::Json* value = entry.find(key);
+  if (!value || value->type != json::Json::Type::Number) return std::nullopt;
+  return value->number;
+}
+
+}  // namespace
+
+void restoreEarlierResults(const std::vector<BatchJob>& jobs, std::vector<BatchResult>& results,
+                           const std::filesystem::path& earlierSummary) {
+  json::Json earlier;
+  try {
+    if (!std::filesystem::exists(earlierSummary)) return;
+    earlier = json::parseJson(io::loadFile(earlierSummary));
+  } catch (const std::exception&) {
+    return;
+  }
+  const json::Json* entries = earlier.find("jobs");
+  if (!entries || entries->type != json::Json::Type::Array) return;
+  for (const json::Json& entry : entries->items) {
+    const json::Json* index = entry.find("index");
+    const json::Json* output = entry.find("output");
+    const json::Json* status = entry.find("status");
+    if (!index || !output || !status || index->type != json::Json::Type::Number) continue;
+    const auto j = static_cast<std::size_t>(index->number);
+    if (j >= jobs.size() || j >= results.size() || results[j].status != "skipped" ||
+        jobs[j].output.string() != output->text ||
+        (status->text != "ok" && status->text != "short"))
+      continue;
+    BatchResult& result = results[j];
+    result.status = status->text;
+    if (const json::Json* message = entry.find("message")) result.message = message->text;
+    result.seconds = numberOf(entry, "seconds").value_or(0.0);
+    result.elementsIn = countOf(entry, "elements_in");
+    result.elementsOut = countOf(entry, "elements_out");
+    result.qualityFailures = countOf(entry, "quality_failures");
+    result.qualityFailureShare = numberOf(entry, "quality_failure_share");
+    result.maxDistance = numberOf(entry, "max_distance");
+    result.fromEarlierRun = true;
+  }
 }
 
 }  // namespace voxremesh

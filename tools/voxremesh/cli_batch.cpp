@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <filesystem>
+
 #include "cli_common.h"
 #include "voxremesh/batch.h"
 #include "voxremesh/progress.h"
@@ -95,20 +97,30 @@ int runBatchCommand(const std::vector<std::string>& args) {
     progress.update("batch", std::to_string(done) + "/" + std::to_string(total) + " jobs",
                     static_cast<double>(done) / static_cast<double>(total));
   };
-  const std::vector<BatchResult> results = runBatch(file.jobs, options);
+  std::vector<BatchResult> results = runBatch(file.jobs, options);
   progress.clear();
+  // A resumed run keeps the earlier results of the jobs it skips (their summary rows and the
+  // exit code), read from the earlier summary before it is replaced.
+  if (options.resume) restoreEarlierResults(file.jobs, results, prefixText + ".json");
   writeBatchSummaries(file.jobs, results, prefixText);
-  std::size_t ok = 0, failed = 0, skipped = 0, shortJobs = 0;
+  // Jobs run now by status; skipped ones (those restored from the earlier run among them).
+  std::size_t ok = 0, failed = 0, skipped = 0, shortJobs = 0, earlier = 0, anyShort = 0;
   for (const BatchResult& result : results) {
+    anyShort += result.status == "short" ? 1 : 0;
+    if (result.fromEarlierRun || result.status == "skipped") {
+      ++skipped;
+      earlier += result.fromEarlierRun ? 1 : 0;
+      continue;
+    }
     ok += result.status == "ok" ? 1 : 0;
     shortJobs += result.status == "short" ? 1 : 0;
     failed += result.status == "failed" ? 1 : 0;
-    skipped += result.status == "skipped" ? 1 : 0;
   }
   printOutput(std::to_string(ok) + " ok, " + std::to_string(shortJobs) + " short, " +
-              std::to_string(failed) + " failed, " + std::to_string(skipped) +
-              " skipped; summary in " + prefixText + ".csv and .json\n");
-  return failed > 0 ? 1 : (shortJobs > 0 ? kExitShortfall : 0);
+              std::to_string(failed) + " failed, " + std::to_string(skipped) + " skipped (" +
+              std::to_string(earlier) + " with their earlier result); summary in " + prefixText +
+              ".csv and .json\n");
+  return failed > 0 ? 1 : (anyShort > 0 ? kExitShortfall : 0);
 }
 
 }  // namespace voxremesh::cli

@@ -220,6 +220,9 @@ int runRemesh(const std::vector<std::string>& args) {
                                       : (ref.file.empty() ? "" : ref.file + " ") + "line " +
                                             std::to_string(ref.line)) +
                        "): node " + std::to_string(ref.node) + " kept: " + ref.reason);
+  for (const RemeshedPart& part : report.parts)
+    if (part.status != PartStatus::Kept && !part.reason.empty())
+      warnings.push_back("part " + std::to_string(part.plan.part) + ": " + part.reason);
   printWarnings(warnings);
 
   const double seconds =
