@@ -35,13 +35,16 @@ struct RemeshSettings {
   double targetSize = 0.0;
   /// Per-part target sizes that replace targetSize for those parts (only when asked for).
   std::map<Id, double> partSizes;
-  /// Finer-voxel retries of a part whose mesh misses the acceptance (each halves the voxel).
-  int retries = 2;
+  /// Finer-voxel retries of a part whose mesh misses the acceptance (each halves the voxel). One
+  /// by default: each halving quadruples the elements and halves the explicit time step, which a
+  /// crash model pays everywhere.
+  int retries = 1;
   /// A sheet narrower than this many voxels (its width 2 x area / boundary length) gets a voxel
   /// this much smaller than its width, so that the strip, flange or hole is kept.
   double narrowFeatureVoxels = 3.0;
   /// The finest voxel any reduction or retry may reach, as a share of the part's target size.
-  double finestVoxelShare = 0.125;
+  /// The distance limit stays 0.25 x the target size; element criteria use the voxel reached.
+  double finestVoxelShare = 0.25;
   /// The parts to remesh; empty (the default) means every part with shells.
   std::vector<Id> parts;
   /// Feature and corner angles (sheets.h defaults: 45 and 30 degrees).

@@ -89,7 +89,10 @@ struct QualitySettings {
   /// default) means the median edge length of the assessed mesh.
   double targetSize = 0.0;
   double maxTriangleShare = 0.05;   ///< triangles / all elements
-  double maxDistanceFactor = 0.25;  ///< two-sided max distance limit = this x targetSize
+  double maxDistanceFactor = 0.25;  ///< two-sided max distance limit = this x distanceSize
+  /// The size the distance limit scales with; 0 (the default) means targetSize. A part remeshed
+  /// at a finer voxel than asked keeps the distance limit of the size asked.
+  double distanceSize = 0.0;
   /// A quad corner above this angle (reflex-corrected) is degenerate (DegenerateCorner).
   double degenerateCornerDeg = 179.0;
   /// A mesh passes when at most this share of its elements fails a criterion (and no element is

@@ -49,7 +49,8 @@ struct PartQuality {
 /// @param remeshed  the deck after remeshDeck
 /// @param remesh    what remeshDeck returned: its parts and their target sizes
 /// @param settings  the limits (quality.h defaults); targetSize is replaced per part by the
-///                  size the part was remeshed at (RemeshedPart::voxelSize)
+///                  size the part was remeshed at (RemeshedPart::voxelSize), distanceSize by
+///                  its target size
 /// @return one entry per remeshed or retried part of remesh.parts (kept parts are left out), in
 ///         that order
 /// Throws SettingError for bad settings; std::runtime_error naming the deck when a part has no

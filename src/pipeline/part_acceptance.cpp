@@ -99,9 +99,10 @@ double sheetWidth(const Sheet& sheet) {
 
 PartAcceptance acceptPartMesh(const QuadMesh& mesh, const QuadMesh& original,
                               const std::vector<std::uint8_t>& foldedAgainstOriginal, double size,
-                              const QualitySettings& settings) {
+                              double askedSize, const QualitySettings& settings) {
   QualitySettings judged = settings;
   judged.targetSize = size;
+  judged.distanceSize = askedSize;
   const QualityReport report = assessQuality(mesh, judged, &original);
   PartAcceptance a;
   a.size = size;

@@ -4,15 +4,18 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <mutex>
 #include <stdexcept>
 #include <unordered_map>
+#include <utility>
 
 #include <unordered_set>
 
 #include "io/atomic_file.h"
+#include "io/text_scan.h"
 #include "json/json.h"
 #include "pipeline/remesh_part.h"
 #include "voxremesh/deck_assembly.h"
@@ -180,18 +183,27 @@ std::string remeshReportJson(const RemeshReport& report) {
     const PartAcceptance& a = part.acceptance;
     std::snprintf(buffer, sizeof buffer,
                   "%s\n    {\"part\": %lld, \"status\": \"%s\", \"elements_before\": %zu, "
-                  "\"quads\": %zu, \"trias\": %zu, \"target_size\": %.17g, \"voxel_size\": %.17g, "
-                  "\"attempts\": %d, \"failing\": %zu, \"failing_share\": %.6g, "
-                  "\"distance\": %.6g, \"distance_limit\": %.6g, \"folded\": %zu, "
-                  "\"degenerate_corners\": %zu, \"components\": [%zu, %zu], \"loops\": [%zu, %zu], "
-                  "\"volume_seconds\": %.6f, \"extract_seconds\": %.6f, "
-                  "\"optimize_seconds\": %.6f, \"reason\": ",
+                  "\"quads\": %zu, \"trias\": %zu, \"attempts\": %d, \"failing\": %zu, "
+                  "\"folded\": %zu, \"degenerate_corners\": %zu, \"components\": [%zu, %zu], "
+                  "\"loops\": [%zu, %zu]",
                   i ? "," : "", static_cast<long long>(part.plan.part), partStatusName(part.status),
-                  part.plan.shells, part.quads, part.trias, part.plan.targetSize, part.voxelSize,
-                  part.attempts, a.failing, a.failingShare, a.distance, a.distanceLimit, a.folded,
+                  part.plan.shells, part.quads, part.trias, part.attempts, a.failing, a.folded,
                   a.degenerateCorners, a.componentsBefore, a.componentsAfter, a.loopsBefore,
-                  a.loopsAfter, part.volumeSeconds, part.extractSeconds, part.optimizeSeconds);
+                  a.loopsAfter);
     out += buffer;
+    const std::pair<const char*, double> numbers[] = {
+        {"target_size", part.plan.targetSize},    {"voxel_size", part.voxelSize},
+        {"failing_share", a.failingShare},        {"distance", a.distance},
+        {"distance_limit", a.distanceLimit},      {"volume_seconds", part.volumeSeconds},
+        {"extract_seconds", part.extractSeconds}, {"optimize_seconds", part.optimizeSeconds}};
+    for (const auto& [key, value] : numbers) {
+      out += std::string(", \"") + key + "\": ";
+      if (std::isfinite(value))
+        io::appendShortest(out, value);
+      else
+        out += "null";
+    }
+    out += ", \"reason\": ";
     out += json::quote(part.reason) + "}";
   }
   out += "\n  ],\n  \"remaps\": [";

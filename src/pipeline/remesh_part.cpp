@@ -146,8 +146,8 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
       std::vector<std::uint8_t> folded;
       QuadMesh candidate =
           meshAtVoxel(sheets, voxel, plan, settings, junctionSpacing, part, folded, stage);
-      part.acceptance =
-          acceptPartMesh(candidate, original, folded, voxel, settings.optimizeSettings.quality);
+      part.acceptance = acceptPartMesh(candidate, original, folded, voxel, plan.targetSize,
+                                       settings.optimizeSettings.quality);
       if (part.acceptance.accepted) {
         part.status = attempt == 0 ? PartStatus::Remeshed : PartStatus::Retried;
         part.reason = sizeNote;

@@ -12,17 +12,19 @@
 namespace voxremesh::pipeline {
 
 /// Checks a part's new mesh against the part's original shells (DESIGN.md, "Acceptance of a
-/// remeshed part"): assessQuality at `size` (distance sampled inside faces, folds, degenerate
-/// corners, failing share), the faces in `foldedAgainstOriginal` (one flag per face of `mesh`,
-/// or empty) counted as folded too, and the components and boundary loops of both.
-/// @param mesh      the part's new mesh, faces naming existing points
-/// @param original  the part's original shells as a mesh
-/// @param size      the element size the mesh is judged against (> 0)
-/// @param settings  the limits; targetSize is replaced by `size`
+/// remeshed part"): assessQuality with its elements judged at `size` and the distance limit at
+/// `askedSize` (distance sampled inside faces, folds, degenerate corners, failing share), the
+/// faces in `foldedAgainstOriginal` (one flag per face of `mesh`, or empty) counted as folded
+/// too, and the components and boundary loops of both.
+/// @param mesh       the part's new mesh, faces naming existing points
+/// @param original   the part's original shells as a mesh
+/// @param size       the element size the mesh is judged against: the voxel used (> 0)
+/// @param askedSize  the part's target size, which the distance limit scales with (> 0)
+/// @param settings   the limits; targetSize and distanceSize are replaced
 /// Throws SettingError for bad settings.
 PartAcceptance acceptPartMesh(const QuadMesh& mesh, const QuadMesh& original,
                               const std::vector<std::uint8_t>& foldedAgainstOriginal, double size,
-                              const QualitySettings& settings);
+                              double askedSize, const QualitySettings& settings);
 
 /// Per face of `mesh` (extracted from `sheet`, oriented like it), 1 when its normal points
 /// against (more than 120 degrees from) the normal of the sheet's face closest to its centroid.

@@ -88,6 +88,7 @@ std::vector<PartQuality> assessRemeshedParts(const FeModel& original, const FeMo
     const FeModel after = partShells(remeshed, id, "the remeshed deck");
     QualitySettings partSettings = settings;
     partSettings.targetSize = part.voxelSize;
+    partSettings.distanceSize = part.plan.targetSize;
     const QuadMesh originalMesh = quadMeshFromModel(before);
     PartQuality quality;
     quality.part = id;

@@ -190,7 +190,8 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
   const std::vector<std::uint8_t> folded = foldedFaces(mesh);
   addMeshCriterion(report, Criterion::Folded, 0.0,
                    std::vector<double>(folded.begin(), folded.end()), folded);
-  report.distanceLimit = s.maxDistanceFactor * s.targetSize;
+  report.distanceLimit =
+      s.maxDistanceFactor * (s.distanceSize > 0.0 ? s.distanceSize : s.targetSize);
   std::vector<double> faceDistance(report.elements, 0.0);
   std::vector<std::uint8_t> far(report.elements, 0);
   if (original) {

@@ -49,6 +49,7 @@ void checkQualitySettings(const QualitySettings& s) {
   requireRange("targetSize", s.targetSize, 0.0, kHuge);
   requireRange("maxTriangleShare", s.maxTriangleShare, 0.0, 1.0);
   requireRange("maxDistanceFactor", s.maxDistanceFactor, 0.0, kHuge);
+  requireRange("distanceSize", s.distanceSize, 0.0, kHuge);
 }
 
 double medianEdgeLength(const QuadMesh& mesh) {

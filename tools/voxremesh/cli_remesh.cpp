@@ -49,7 +49,7 @@ const char* const kHelp =
     "  -o OUT                 the deck to write (required)\n"
     "  --size H               target element size (default: the deck's median edge length)\n"
     "  --part-size PID=H,...  other target sizes for some parts\n"
-    "  --retries N            finer-voxel retries of a part that misses the acceptance (2)\n"
+    "  --retries N            finer-voxel retries of a part that misses the acceptance (1)\n"
     "  --parts P1,P2,...      the parts to remesh (default: all parts with shells)\n"
     "  --feature-angle DEG    edges turning more than DEG are feature lines (default 45)\n"
     "  --threads N            threads (default: all cores)\n"
@@ -114,7 +114,7 @@ std::string formatRemeshTotals(const std::string& output, const RemeshReport& re
     }
     after += part.acceptance.elements;
     failing += part.acceptance.failing;
-    distanceShare = std::max(distanceShare, part.acceptance.distance / part.voxelSize);
+    distanceShare = std::max(distanceShare, part.acceptance.distance / part.plan.targetSize);
   }
   char line[512];
   std::snprintf(line, sizeof line,
