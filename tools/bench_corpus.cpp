@@ -11,7 +11,7 @@
 // (or a signal) a crash.
 //
 // Prints one table row per run: deck, size, exit code, parts, parts remeshed / retried / kept,
-// failing share, worst distance / voxel size, folded elements and 180-degree quad corners (these
+// failing share, worst distance / target size, folded elements and 180-degree quad corners (these
 // four over the remeshed and retried parts), seconds and peak MB; then a line of totals. Writes
 // the same to --json (default bench_corpus.json) as an array of runs, each with the per-part list
 // of the CLI's report, for comparisons between versions. The kernel carries a parent's peak memory
@@ -95,7 +95,7 @@ struct Run {
   fs::path folder;      ///< the run's temporary folder
   std::size_t parts = 0, remeshed = 0, retried = 0, kept = 0;
   std::size_t elements = 0, failing = 0, folded = 0, degenerate = 0;  ///< remeshed + retried
-  double worstDistance = 0.0;  ///< max distance / voxel size over remeshed and retried parts
+  double worstDistance = 0.0;  ///< max distance / target size over remeshed and retried parts
   std::vector<Json> partList;  ///< the "parts" array of the CLI's report
 };
 
@@ -352,7 +352,7 @@ std::string text(const Json& object, const char* key) {
 }
 
 /// Adds one part of the report to the run's figures: its status (a kept part's ID goes to the
-/// note), and for a remeshed or retried part its elements, failing elements, distance / voxel
+/// note), and for a remeshed or retried part its elements, failing elements, distance / target
 /// size, folds and 180-degree corners.
 void addPart(const Json& part, Run& run) {
   ++run.parts;
@@ -371,7 +371,7 @@ void addPart(const Json& part, Run& run) {
   run.failing += count(part, "failing");
   run.folded += count(part, "folded");
   run.degenerate += count(part, "degenerate_corners");
-  const double ratio = number(part, "distance") / number(part, "voxel_size");
+  const double ratio = number(part, "distance") / number(part, "target_size");
   run.worstDistance = std::isfinite(ratio) ? std::max(run.worstDistance, ratio)
                                            : std::numeric_limits<double>::infinity();
 }
