@@ -35,6 +35,13 @@ inline Vec3 normalized(const Vec3& a) {
   const double l = norm(a);
   return l > 0.0 ? a * (1.0 / l) : Vec3{0.0, 0.0, 0.0};
 }
+/// The normal of an element, not normalised (twice its area along the normal): a triangle's
+/// (p1 - p0) x (p2 - p0), a quad's the cross product of its diagonals (p2 - p0) x (p3 - p1), the
+/// area-weighted mean of its corner normals. p3 is not read for a triangle.
+inline Vec3 elementNormal(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3,
+                          bool triangle) {
+  return triangle ? cross(p1 - p0, p2 - p0) : cross(p2 - p0, p3 - p1);
+}
 /// The angle between a and b in degrees (0 when either is zero).
 inline double angleDeg(const Vec3& a, const Vec3& b) {
   const double s = norm(cross(a, b)), c = dot(a, b);

@@ -7,7 +7,6 @@
 
 #include "geometry/vec3.h"
 #include "pipeline/remesh_part.h"
-#include "voxremesh/reference_surface.h"
 
 namespace voxremesh::pipeline {
 
@@ -15,22 +14,23 @@ using namespace geom;  // NOLINT: the vector operators
 
 namespace {
 
-/// The unit normal of a face of corners p (triangle: (p1 - p0) x (p2 - p0); quad: the cross
-/// product of its diagonals); zero without area.
-Vec3 faceNormal(const std::vector<std::array<double, 3>>& points,
-                const std::array<CornerIndex, 4>& face, bool triangle) {
-  const Vec3 n = triangle
-                     ? cross(points[face[1]] - points[face[0]], points[face[2]] - points[face[0]])
-                     : cross(points[face[2]] - points[face[0]], points[face[3]] - points[face[1]]);
-  const double length = norm(n);
-  return length > 0.0 ? n * (1.0 / length) : Vec3{0.0, 0.0, 0.0};
+/// The unit normal of a face (elementNormal), zero without area.
+template <typename Corners>
+Vec3 unitNormal(const std::vector<std::array<double, 3>>& points, const Corners& face,
+                bool triangle) {
+  return normalized(elementNormal(points[face[0]], points[face[1]], points[face[2]],
+                                  points[face[triangle ? 2 : 3]], triangle));
 }
+
+}  // namespace
 
 std::string formatNumber(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.4g", value);
   return text;
 }
+
+namespace {
 
 /// The first failed check of an acceptance, in words (empty when all pass).
 std::string failedCheck(const PartAcceptance& a, const QualitySettings& settings) {
@@ -54,14 +54,20 @@ std::string failedCheck(const PartAcceptance& a, const QualitySettings& settings
 
 }  // namespace
 
-std::vector<std::uint8_t> foldedAgainstSheet(const QuadMesh& mesh, const Sheet& sheet) {
-  QuadMesh surface;
-  surface.points = sheet.points;
+QuadMesh sheetSurface(const Sheet& sheet) {
+  QuadMesh mesh;
+  mesh.part = sheet.part;
+  mesh.points = sheet.points;
+  mesh.faces.reserve(sheet.faces.size());
   for (const auto& face : sheet.faces)
-    surface.faces.push_back({face[0], face[1], face[2], face[3] == kNoPoint ? kNoCorner : face[3]});
+    mesh.faces.push_back({face[0], face[1], face[2], face[3] == kNoPoint ? kNoCorner : face[3]});
+  return mesh;
+}
+
+std::vector<std::uint8_t> foldedAgainstSheet(const QuadMesh& mesh, const QuadMesh& surface,
+                                             const ReferenceSurface& reference) {
   std::vector<std::uint8_t> folded(mesh.faces.size(), 0);
-  if (surface.faces.empty() || mesh.faces.empty()) return folded;
-  const ReferenceSurface reference(surface);
+  if (reference.empty() || mesh.faces.empty()) return folded;
   std::vector<std::array<double, 3>> centroids(mesh.faces.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const int n = cornerCount(mesh.faces[f]);
@@ -73,8 +79,8 @@ std::vector<std::uint8_t> foldedAgainstSheet(const QuadMesh& mesh, const Sheet& 
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const auto& own = mesh.faces[f];
     const auto& closest = surface.faces[hits[f].face];
-    const double cosine = dot(faceNormal(mesh.points, own, cornerCount(own) == 3),
-                              faceNormal(surface.points, closest, cornerCount(closest) == 3));
+    const double cosine = dot(unitNormal(mesh.points, own, cornerCount(own) == 3),
+                              unitNormal(surface.points, closest, cornerCount(closest) == 3));
     folded[f] = cosine < -0.5 ? 1 : 0;
   }
   return folded;
@@ -85,8 +91,8 @@ double sheetWidth(const Sheet& sheet) {
   for (const auto& face : sheet.faces) {
     const bool triangle = face[3] == kNoPoint;
     const auto& p = sheet.points;
-    area += 0.5 * norm(triangle ? cross(p[face[1]] - p[face[0]], p[face[2]] - p[face[0]])
-                                : cross(p[face[2]] - p[face[0]], p[face[3]] - p[face[1]]));
+    area += 0.5 * norm(elementNormal(p[face[0]], p[face[1]], p[face[2]], p[face[triangle ? 2 : 3]],
+                                     triangle));
   }
   for (const Polyline& loop : sheet.boundaryLoops)
     for (std::size_t i = 0; i < loop.points.size(); ++i) {

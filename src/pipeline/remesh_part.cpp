@@ -12,7 +12,6 @@
 
 #include "pipeline/remesh_part.h"
 #include "voxremesh/errors.h"
-#include "voxremesh/reference_surface.h"
 
 namespace voxremesh::pipeline {
 
@@ -20,23 +19,6 @@ namespace {
 
 double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-std::string formatNumber(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", value);
-  return text;
-}
-
-/// The faces of a sheet as a mesh, the surface its new mesh is projected on.
-QuadMesh sheetSurface(const Sheet& sheet) {
-  QuadMesh mesh;
-  mesh.part = sheet.part;
-  mesh.points = sheet.points;
-  mesh.faces.reserve(sheet.faces.size());
-  for (const auto& face : sheet.faces)
-    mesh.faces.push_back({face[0], face[1], face[2], face[3] == kNoPoint ? kNoCorner : face[3]});
-  return mesh;
 }
 
 /// One attempt's mesh: every sheet written into a volume of the given voxel size, extracted and
@@ -68,16 +50,18 @@ QuadMesh meshAtVoxel(const std::vector<Sheet>& sheets, double voxel, const PartP
     }
     addExtractStats(part.extract, stats);
     part.extractSeconds += since(start);
+    const QuadMesh surface = sheetSurface(sheets[k]);
+    const ReferenceSurface original(surface);
     if (settings.optimize) {
       if (stage) stage("optimize");
       start = std::chrono::steady_clock::now();
-      const ReferenceSurface original(sheetSurface(sheets[k]));
       OptimizeSettings optimizeSettings = settings.optimizeSettings;
       optimizeSettings.quality.targetSize = voxel;
       optimizeQuadMesh(sheetMeshes.back(), original, optimizeSettings);
       part.optimizeSeconds += since(start);
     }
-    const std::vector<std::uint8_t> sheetFolds = foldedAgainstSheet(sheetMeshes.back(), sheets[k]);
+    const std::vector<std::uint8_t> sheetFolds =
+        foldedAgainstSheet(sheetMeshes.back(), surface, original);
     folded.insert(folded.end(), sheetFolds.begin(), sheetFolds.end());
   }
   QuadMesh mesh = joinAtJunctions(sheetMeshes);

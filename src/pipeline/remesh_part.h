@@ -4,12 +4,17 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "voxremesh/pipeline.h"
 #include "voxremesh/quality.h"
+#include "voxremesh/reference_surface.h"
 
 namespace voxremesh::pipeline {
+
+/// A number with 4 significant digits, as the part reasons write them.
+std::string formatNumber(double value);
 
 /// Checks a part's new mesh against the part's original shells (DESIGN.md, "Acceptance of a
 /// remeshed part"): assessQuality with its elements judged at `size` and the distance limit at
@@ -26,9 +31,16 @@ PartAcceptance acceptPartMesh(const QuadMesh& mesh, const QuadMesh& original,
                               const std::vector<std::uint8_t>& foldedAgainstOriginal, double size,
                               double askedSize, const QualitySettings& settings);
 
-/// Per face of `mesh` (extracted from `sheet`, oriented like it), 1 when its normal points
+/// The faces of a sheet as a mesh (oriented as the sheet), the surface its new mesh is projected
+/// on and checked against.
+QuadMesh sheetSurface(const Sheet& sheet);
+
+/// Per face of `mesh` (extracted from a sheet, oriented like it), 1 when its normal points
 /// against (more than 120 degrees from) the normal of the sheet's face closest to its centroid.
-std::vector<std::uint8_t> foldedAgainstSheet(const QuadMesh& mesh, const Sheet& sheet);
+/// @param surface    sheetSurface of the sheet
+/// @param reference  the closest-point structure built from `surface`
+std::vector<std::uint8_t> foldedAgainstSheet(const QuadMesh& mesh, const QuadMesh& surface,
+                                             const ReferenceSurface& reference);
 
 /// The width of a sheet as a strip: 2 x area / boundary length (infinite without boundary).
 double sheetWidth(const Sheet& sheet);

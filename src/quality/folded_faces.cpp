@@ -13,14 +13,12 @@ using namespace geom;  // NOLINT: the vector operators
 
 namespace {
 
-/// The unit normal of a face (triangle: (p1 - p0) x (p2 - p0); quad: the cross product of its
-/// diagonals), zero when it has no area.
+/// The unit normal of a face (elementNormal), zero when it has no area.
 Vec3 unitNormal(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face) {
+  const bool triangle = cornerCount(face) == 3;
   const auto& p = mesh.points;
-  const Vec3 n = cornerCount(face) == 3 ? cross(p[face[1]] - p[face[0]], p[face[2]] - p[face[0]])
-                                        : cross(p[face[2]] - p[face[0]], p[face[3]] - p[face[1]]);
-  const double length = norm(n);
-  return length > 0.0 ? n * (1.0 / length) : Vec3{0.0, 0.0, 0.0};
+  return normalized(
+      elementNormal(p[face[0]], p[face[1]], p[face[2]], p[face[triangle ? 2 : 3]], triangle));
 }
 
 }  // namespace
