@@ -191,6 +191,22 @@ std::size_t rotateFailingEdges(QuadMesh& mesh, const QualitySettings& settings, 
 /// Throws std::invalid_argument for a bad mesh.
 std::size_t splitInvertedQuads(QuadMesh& mesh);
 
+/// Folds cut out and filled again: the folded faces (quality.h's foldedFaces) and every face
+/// sharing a point with them form regions; a region whose outline is one simple loop, whose inner
+/// points are all Free and whose outline projects on the plane of its unfolded faces' mean normal
+/// as a simple polygon is replaced by triangles filling that polygon (its inner points
+/// dropped) when their centroids and edge midpoints stay within half the distance limit of
+/// `original` (or as close as the region's faces were) and none is a sliver (face_score.h): a fan
+/// from the outline's centroid laid on the original where the outline is star-shaped round it,
+/// else ear clipping, triangles still too far split at their centroid; then triangle pairs are
+/// merged into quads where they pass (mergeTrianglePairs, when settings.targetSize > 0). Kept only
+/// when fewer faces are folded afterwards. Deterministic.
+/// @return the number of regions refilled
+/// Throws std::invalid_argument for an empty surface or a bad mesh; SettingError for bad
+/// settings.
+std::size_t refillFoldedRegions(QuadMesh& mesh, const ReferenceSurface& original,
+                                const QualitySettings& settings);
+
 /// Points pulled towards the far places of the original: the points of `original` (its
 /// usedPoints, the original's nodes) farther from the mesh than 0.8 x the distance limit
 /// (settings.maxDistanceFactor x targetSize), farthest first, one per face of the mesh nearest to
@@ -319,6 +335,7 @@ struct OptimizeStats {
   std::size_t farPulls = 0;       ///< points pulled towards far original places
   std::size_t failingSplit = 0;   ///< failing quads split into two triangles (splitFailingQuads)
   std::size_t invertedSplit = 0;  ///< quads with a reflex corner split into two triangles (last)
+  std::size_t foldsRefilled = 0;  ///< regions round folds cut out and filled (refillFoldedRegions)
   WarpingResult warping;
 };
 

@@ -125,6 +125,8 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
   s.warping = removeWarping(mesh, settings.warpingDeg, settings.warpingIterations,
                             settings.warpingMoveFactor * quality.targetSize);
   s.warpingSeconds = secondsSince(t);
+  // Folds out before the last passes, which then work on the filled regions too.
+  s.foldsRefilled = refillFoldedRegions(mesh, original, quality);
   if (improve) improveFailing();
   if (settings.reconnectRounds > 0 && quality.targetSize > 0.0) {
     const Clock::time_point r = Clock::now();

@@ -1,0 +1,267 @@
+// refillFoldedRegions: the faces round folds cut out and their outline filled again (optimize.h).
+#include <algorithm>
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <vector>
+
+#include "optimize/face_score.h"
+#include "optimize/mesh_topology.h"
+#include "voxremesh/optimize.h"
+#include "voxremesh/quality.h"
+
+namespace voxremesh {
+
+using namespace geom;  // NOLINT: the vector operators
+
+namespace {
+
+using Face = std::array<CornerIndex, 4>;
+
+/// The connected sets (across shared points) of the flagged faces, each ascending.
+std::vector<std::vector<std::uint32_t>> flaggedRegions(const QuadMesh& mesh, const opt::Topology& t,
+                                                       const std::vector<std::uint8_t>& flagged) {
+  std::vector<std::uint8_t> seen(mesh.faces.size(), 0);
+  std::vector<std::vector<std::uint32_t>> regions;
+  for (std::uint32_t start = 0; start < mesh.faces.size(); ++start) {
+    if (!flagged[start] || seen[start]) continue;
+    std::vector<std::uint32_t> region{start};
+    seen[start] = 1;
+    for (std::size_t i = 0; i < region.size(); ++i) {
+      const Face& face = mesh.faces[region[i]];
+      for (int c = 0; c < cornerCount(face); ++c)
+        for (const std::uint32_t* g = t.facesBegin(face[std::size_t(c)]);
+             g != t.facesEnd(face[std::size_t(c)]); ++g)
+          if (flagged[*g] && !seen[*g]) {
+            seen[*g] = 1;
+            region.push_back(*g);
+          }
+    }
+    std::sort(region.begin(), region.end());
+    regions.push_back(std::move(region));
+  }
+  return regions;
+}
+
+/// The outline of a region of faces as one closed loop of points in the faces' direction, or
+/// empty when the outline is not a single simple loop.
+std::vector<CornerIndex> outlineOf(const QuadMesh& mesh, const std::vector<std::uint32_t>& region) {
+  std::map<std::pair<CornerIndex, CornerIndex>, int> directed;
+  for (const std::uint32_t f : region) {
+    const Face& face = mesh.faces[f];
+    const int n = cornerCount(face);
+    for (int c = 0; c < n; ++c) ++directed[{face[std::size_t(c)], face[std::size_t((c + 1) % n)]}];
+  }
+  std::map<CornerIndex, CornerIndex> next;
+  for (const auto& [edge, count] : directed) {
+    if (count != 1) return {};
+    if (directed.count({edge.second, edge.first})) continue;       // inside the region
+    if (!next.emplace(edge.first, edge.second).second) return {};  // pinched outline
+  }
+  if (next.size() < 3) return {};
+  std::vector<CornerIndex> loop{next.begin()->first};
+  while (loop.size() <= next.size()) {
+    const auto it = next.find(loop.back());
+    if (it == next.end()) return {};
+    if (it->second == loop.front()) break;
+    loop.push_back(it->second);
+  }
+  return loop.size() == next.size() ? loop : std::vector<CornerIndex>{};
+}
+
+/// Ear clipping of a loop projected on the plane normal to `normal`, the loop running counter-
+/// clockwise seen from it; empty when the projection is not a simple polygon it can clip.
+std::vector<Face> clipEars(const QuadMesh& mesh, const std::vector<CornerIndex>& loop,
+                           const Vec3& normal) {
+  const Vec3 axis = std::abs(normal[0]) < 0.9 ? Vec3{1.0, 0.0, 0.0} : Vec3{0.0, 1.0, 0.0};
+  const Vec3 u = normalized(cross(normal, axis));
+  const Vec3 w = cross(normal, u);
+  std::vector<std::array<double, 2>> xy;
+  for (const CornerIndex v : loop) xy.push_back({dot(mesh.points[v], u), dot(mesh.points[v], w)});
+  const auto turn = [&](std::size_t a, std::size_t b, std::size_t c) {
+    return (xy[b][0] - xy[a][0]) * (xy[c][1] - xy[a][1]) -
+           (xy[b][1] - xy[a][1]) * (xy[c][0] - xy[a][0]);
+  };
+  std::vector<std::size_t> left(loop.size());
+  for (std::size_t i = 0; i < left.size(); ++i) left[i] = i;
+  std::vector<Face> triangles;
+  while (left.size() > 3) {
+    bool clipped = false;
+    for (std::size_t i = 0; i < left.size() && !clipped; ++i) {
+      const std::size_t a = left[(i + left.size() - 1) % left.size()], b = left[i],
+                        c = left[(i + 1) % left.size()];
+      if (turn(a, b, c) <= 0.0) continue;  // reflex or flat corner
+      bool empty = true;
+      for (const std::size_t p : left) {
+        if (p == a || p == b || p == c) continue;
+        if (turn(a, b, p) >= 0.0 && turn(b, c, p) >= 0.0 && turn(c, a, p) >= 0.0) empty = false;
+      }
+      if (!empty) continue;
+      triangles.push_back({loop[a], loop[b], loop[c], kNoCorner});
+      left.erase(left.begin() + std::ptrdiff_t(i));
+      clipped = true;
+    }
+    if (!clipped) return {};
+  }
+  if (turn(left[0], left[1], left[2]) <= 0.0) return {};
+  triangles.push_back({loop[left[0]], loop[left[1]], loop[left[2]], kNoCorner});
+  return triangles;
+}
+
+/// A fan of triangles from a new point at `centre` (added to `mesh` as a Free point) to every
+/// edge of the loop, when each of them turns the loop's way seen from `normal` (the loop is star-
+/// shaped round the centre); else empty and `mesh` unchanged.
+std::vector<Face> fanFill(QuadMesh& mesh, const std::vector<CornerIndex>& loop, const Vec3& normal,
+                          const Vec3& centre) {
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const Vec3& a = mesh.points[loop[i]];
+    const Vec3& b = mesh.points[loop[(i + 1) % loop.size()]];
+    if (dot(cross(b - a, centre - a), normal) <= 0.0) return {};
+  }
+  const auto middle = static_cast<CornerIndex>(mesh.points.size());
+  mesh.points.push_back(centre);
+  if (!mesh.constraints.empty()) mesh.constraints.push_back(PointConstraint{});
+  std::vector<Face> triangles;
+  for (std::size_t i = 0; i < loop.size(); ++i)
+    triangles.push_back({loop[i], loop[(i + 1) % loop.size()], middle, kNoCorner});
+  return triangles;
+}
+
+/// The largest distance to `original` of the centroids and edge midpoints of `faces`.
+double farthestFrom(const ReferenceSurface& original, const QuadMesh& mesh,
+                    const std::vector<Face>& faces) {
+  double farthest = 0.0;
+  for (const Face& face : faces) {
+    const int n = cornerCount(face);
+    Vec3 centroid{0.0, 0.0, 0.0};
+    for (int c = 0; c < n; ++c) {
+      const Vec3& a = mesh.points[face[std::size_t(c)]];
+      const Vec3& b = mesh.points[face[std::size_t((c + 1) % n)]];
+      centroid = centroid + a * (1.0 / n);
+      farthest = std::max(farthest, original.closestPoint((a + b) * 0.5).distance);
+    }
+    farthest = std::max(farthest, original.closestPoint(centroid).distance);
+  }
+  return farthest;
+}
+
+/// Each triangle farther than `allowed` from the original (farthestFrom) split into three at its
+/// centroid's closest point on the original (a new Free point); the points are added to `mesh`.
+std::vector<Face> splitFarTriangles(QuadMesh& mesh, const ReferenceSurface& original,
+                                    const std::vector<Face>& triangles, double allowed) {
+  std::vector<Face> result;
+  for (const Face& t : triangles) {
+    if (farthestFrom(original, mesh, {t}) <= allowed) {
+      result.push_back(t);
+      continue;
+    }
+    const Vec3 centroid = (mesh.points[t[0]] + mesh.points[t[1]] + mesh.points[t[2]]) * (1.0 / 3.0);
+    const auto middle = static_cast<CornerIndex>(mesh.points.size());
+    mesh.points.push_back(original.closestPoint(centroid).point);
+    if (!mesh.constraints.empty()) mesh.constraints.push_back(PointConstraint{});
+    for (int c = 0; c < 3; ++c)
+      result.push_back({t[std::size_t(c)], t[std::size_t((c + 1) % 3)], middle, kNoCorner});
+  }
+  return result;
+}
+
+}  // namespace
+
+std::size_t refillFoldedRegions(QuadMesh& mesh, const ReferenceSurface& original,
+                                const QualitySettings& settings) {
+  opt::checkMesh(mesh);
+  if (original.empty()) throw std::invalid_argument("refillFoldedRegions: the surface is empty");
+  const std::vector<std::uint8_t> folded = foldedFaces(mesh);
+  if (std::count(folded.begin(), folded.end(), std::uint8_t(1)) == 0) return 0;
+  const opt::Topology t = opt::buildTopology(mesh);
+  const std::size_t pointsBefore = mesh.points.size();
+  // The folded faces and every face sharing a point with them: their outline then runs through
+  // faces that are not folded.
+  std::vector<std::uint8_t> cut(mesh.faces.size(), 0);
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (!folded[f]) continue;
+    for (int c = 0; c < cornerCount(mesh.faces[f]); ++c)
+      for (const std::uint32_t* g = t.facesBegin(mesh.faces[f][std::size_t(c)]);
+           g != t.facesEnd(mesh.faces[f][std::size_t(c)]); ++g)
+        cut[*g] = 1;
+  }
+  std::vector<std::uint8_t> removed(mesh.faces.size(), 0);
+  std::vector<Face> added;
+  std::size_t refilled = 0;
+  for (const std::vector<std::uint32_t>& region : flaggedRegions(mesh, t, cut)) {
+    const std::vector<CornerIndex> loop = outlineOf(mesh, region);
+    if (loop.empty()) continue;
+    // Points inside the region (not on its outline) disappear: never a fixed one.
+    std::vector<std::uint8_t> onLoop(mesh.points.size(), 0);
+    for (const CornerIndex v : loop) onLoop[v] = 1;
+    bool keepsFixed = true;
+    Vec3 normal{0.0, 0.0, 0.0};
+    for (const std::uint32_t f : region) {
+      const Face& face = mesh.faces[f];
+      const bool triangle = cornerCount(face) == 3;
+      if (!folded[f])
+        normal =
+            normal + elementNormal(mesh.points[face[0]], mesh.points[face[1]], mesh.points[face[2]],
+                                   mesh.points[face[triangle ? 2 : 3]], triangle);
+      for (int c = 0; c < cornerCount(face); ++c) {
+        const CornerIndex v = face[std::size_t(c)];
+        const PointRole role = opt::roleOf(mesh, v);
+        if (!onLoop[v] && role != PointRole::Free) keepsFixed = false;
+      }
+    }
+    if (!keepsFixed || norm(normal) == 0.0) continue;
+    // A fan round the outline's centroid laid on the original follows a curved region; ear
+    // clipping of the outline where the outline is not star-shaped round it.
+    const std::size_t pointsOfRegion = mesh.points.size();
+    Vec3 centroid{0.0, 0.0, 0.0};
+    for (const CornerIndex v : loop)
+      centroid = centroid + mesh.points[v] * (1.0 / double(loop.size()));
+    std::vector<Face> triangles =
+        fanFill(mesh, loop, normalized(normal), original.closestPoint(centroid).point);
+    if (triangles.empty()) triangles = clipEars(mesh, loop, normalized(normal));
+    if (triangles.empty()) continue;
+    // The filled region stays as close to the original as half the distance limit, or as its
+    // faces were: far triangles are split at their centroid, laid on the original.
+    std::vector<Face> faces;
+    for (const std::uint32_t f : region) faces.push_back(mesh.faces[f]);
+    const double allowed = std::max(0.5 * settings.maxDistanceFactor * settings.targetSize,
+                                    farthestFrom(original, mesh, faces));
+    triangles = splitFarTriangles(mesh, original, triangles, allowed);
+    // No sliver (face_score.h): the fill must not trade a fold for a time step cut a hundredfold.
+    bool sliver = false;
+    for (const Face& triangle : triangles) {
+      std::array<std::array<double, 3>, 4> p{};
+      for (int c = 0; c < 3; ++c) p[std::size_t(c)] = mesh.points[triangle[std::size_t(c)]];
+      sliver = sliver ||
+               !(elementQuality(p, 3).minLength >=
+                 opt::kDegenerateLengthFraction * settings.minLengthFactor * settings.targetSize);
+    }
+    if (sliver || farthestFrom(original, mesh, triangles) > allowed) {
+      mesh.points.resize(pointsOfRegion);
+      if (!mesh.constraints.empty()) mesh.constraints.resize(pointsOfRegion);
+      continue;
+    }
+    for (const std::uint32_t f : region) removed[f] = 1;
+    added.insert(added.end(), triangles.begin(), triangles.end());
+    ++refilled;
+  }
+  if (refilled == 0) return 0;
+  QuadMesh result = mesh;
+  result.faces.clear();
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    if (!removed[f]) result.faces.push_back(mesh.faces[f]);
+  result.faces.insert(result.faces.end(), added.begin(), added.end());
+  const std::vector<std::uint8_t> after = foldedFaces(result);
+  if (std::count(after.begin(), after.end(), std::uint8_t(1)) >=
+      std::count(folded.begin(), folded.end(), std::uint8_t(1))) {
+    mesh.points.resize(pointsBefore);
+    if (!mesh.constraints.empty()) mesh.constraints.resize(pointsBefore);
+    return 0;
+  }
+  if (settings.targetSize > 0.0) mergeTrianglePairs(result, settings);
+  eraseUnusedPoints(result);
+  mesh = std::move(result);
+  return refilled;
+}
+
+}  // namespace voxremesh
