@@ -341,7 +341,8 @@ struct OptimizeStats {
 
 /// Runs the steps: edge splitting, clean-up, rhombic collapse, clean-up, relaxation, triangle
 /// merging, relaxation, improvement of the failing elements, edge rotation (and the improvement
-/// again where any rotated), warping removal, the improvement once more (it takes only moves that
+/// again where any rotated), warping removal, the regions round folded faces refilled
+/// (refillFoldedRegions), the improvement once more (it takes only moves that
 /// leave fewer criteria failing around a point, warping included), the reconnection of the faces
 /// still failing (reconnectFailingFaces), points pulled towards the far places of the original
 /// (fitFarOriginalPoints), the split of quads still failing into triangle pairs that fail less
