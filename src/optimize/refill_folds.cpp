@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "optimize/chord_error.h"
 #include "optimize/face_score.h"
 #include "optimize/mesh_topology.h"
 #include "voxremesh/optimize.h"
@@ -127,31 +128,13 @@ std::vector<Face> fanFill(QuadMesh& mesh, const std::vector<CornerIndex>& loop, 
   return triangles;
 }
 
-/// The largest distance to `original` of the centroids and edge midpoints of `faces`.
-double farthestFrom(const ReferenceSurface& original, const QuadMesh& mesh,
-                    const std::vector<Face>& faces) {
-  double farthest = 0.0;
-  for (const Face& face : faces) {
-    const int n = cornerCount(face);
-    Vec3 centroid{0.0, 0.0, 0.0};
-    for (int c = 0; c < n; ++c) {
-      const Vec3& a = mesh.points[face[std::size_t(c)]];
-      const Vec3& b = mesh.points[face[std::size_t((c + 1) % n)]];
-      centroid = centroid + a * (1.0 / n);
-      farthest = std::max(farthest, original.closestPoint((a + b) * 0.5).distance);
-    }
-    farthest = std::max(farthest, original.closestPoint(centroid).distance);
-  }
-  return farthest;
-}
-
-/// Each triangle farther than `allowed` from the original (farthestFrom) split into three at its
+/// Each triangle farther than `allowed` from the original (chordError) split into three at its
 /// centroid's closest point on the original (a new Free point); the points are added to `mesh`.
 std::vector<Face> splitFarTriangles(QuadMesh& mesh, const ReferenceSurface& original,
                                     const std::vector<Face>& triangles, double allowed) {
   std::vector<Face> result;
   for (const Face& t : triangles) {
-    if (farthestFrom(original, mesh, {t}) <= allowed) {
+    if (opt::chordError(mesh, {t}, original) <= allowed) {
       result.push_back(t);
       continue;
     }
@@ -225,7 +208,7 @@ std::size_t refillFoldedRegions(QuadMesh& mesh, const ReferenceSurface& original
     std::vector<Face> faces;
     for (const std::uint32_t f : region) faces.push_back(mesh.faces[f]);
     const double allowed = std::max(0.5 * settings.maxDistanceFactor * settings.targetSize,
-                                    farthestFrom(original, mesh, faces));
+                                    opt::chordError(mesh, faces, original));
     triangles = splitFarTriangles(mesh, original, triangles, allowed);
     // No sliver (face_score.h): the fill must not trade a fold for a time step cut a hundredfold.
     bool sliver = false;
@@ -236,7 +219,7 @@ std::size_t refillFoldedRegions(QuadMesh& mesh, const ReferenceSurface& original
                !(elementQuality(p, 3).minLength >=
                  opt::kDegenerateLengthFraction * settings.minLengthFactor * settings.targetSize);
     }
-    if (sliver || farthestFrom(original, mesh, triangles) > allowed) {
+    if (sliver || opt::chordError(mesh, triangles, original) > allowed) {
       mesh.points.resize(pointsOfRegion);
       if (!mesh.constraints.empty()) mesh.constraints.resize(pointsOfRegion);
       continue;
