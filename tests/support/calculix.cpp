@@ -1,14 +1,19 @@
 #include "support/calculix.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <chrono>
 #include <cstdio>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
+#include <unordered_map>
+#include <utility>
 
 #include "support/test_support.h"
+#include "voxremesh/io.h"
 
 namespace voxremesh::test {
 
@@ -236,6 +241,62 @@ std::size_t countNearZeroModes(const std::vector<Eigenmode>& modes, double facto
   return static_cast<std::size_t>(
       std::count_if(modes.begin(), modes.end(),
                     [&](const Eigenmode& mode) { return mode.hertz < factor * largest; }));
+}
+
+void writeSubdividedAbaqus(const std::filesystem::path& deck, const std::filesystem::path& out) {
+  FeModel model = readDeck(deck);
+  std::unordered_map<Id, std::size_t> index = model.nodeIndex();
+  Id nextNode = 0, nextShell = 0;
+  for (const Node& node : model.nodes) nextNode = std::max(nextNode, node.id);
+  for (const Shell& shell : model.shells) nextShell = std::max(nextShell, shell.id);
+  std::map<std::pair<Id, Id>, Id> midpoints;
+  const auto addNode = [&](const std::array<double, 3>& xyz) {
+    model.nodes.push_back(Node{++nextNode, xyz});
+    index[nextNode] = model.nodes.size() - 1;
+    return nextNode;
+  };
+  const auto at = [&](Id node) { return model.nodes[index.at(node)].xyz; };
+  const auto midpoint = [&](Id a, Id b) {
+    const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+    const auto found = midpoints.find(key);
+    if (found != midpoints.end()) return found->second;
+    const std::array<double, 3> p = at(a), q = at(b);
+    const Id id = addNode({(p[0] + q[0]) / 2, (p[1] + q[1]) / 2, (p[2] + q[2]) / 2});
+    midpoints.emplace(key, id);
+    return id;
+  };
+  std::vector<Shell> shells;
+  for (const Shell& shell : model.shells) {
+    const int n = shell.nodeCount;
+    std::array<Id, 4> m{};
+    for (int c = 0; c < n; ++c)
+      m[std::size_t(c)] =
+          midpoint(shell.nodes[std::size_t(c)], shell.nodes[std::size_t((c + 1) % n)]);
+    const auto piece = [&](std::array<Id, 4> nodes, int count) {
+      Shell part = shell;
+      part.id = ++nextShell;
+      part.nodes = nodes;
+      part.nodeCount = static_cast<std::uint8_t>(count);
+      shells.push_back(part);
+    };
+    if (n == 4) {
+      std::array<double, 3> centre{};
+      for (int c = 0; c < 4; ++c)
+        for (int a = 0; a < 3; ++a)
+          centre[std::size_t(a)] += at(shell.nodes[std::size_t(c)])[std::size_t(a)] / 4;
+      const Id middle = addNode(centre);
+      for (int c = 0; c < 4; ++c)
+        piece({shell.nodes[std::size_t(c)], m[std::size_t(c)], middle, m[std::size_t((c + 3) % 4)]},
+              4);
+    } else {
+      piece({shell.nodes[0], m[0], m[2], 0}, 3);
+      piece({m[0], shell.nodes[1], m[1], 0}, 3);
+      piece({m[2], m[1], shell.nodes[2], 0}, 3);
+      piece({m[0], m[1], m[2], 0}, 3);
+    }
+  }
+  model.shells = std::move(shells);
+  writeDeck(model, out);
 }
 
 }  // namespace voxremesh::test

@@ -71,4 +71,11 @@ std::string ccxFailure(const CcxRun& run, int modes);
 /// largest frequency of the table.
 std::size_t countNearZeroModes(const std::vector<Eigenmode>& modes, double factor);
 
+/// Writes `deck`'s shells as Abaqus input with every element cut into four (quads at their edge
+/// midpoints and centroid, triangles at their edge midpoints; new nodes and elements numbered
+/// above the deck's): the same geometry at half the element size, the reference for a part
+/// remeshed at half its target size, since a shell's frequencies depend on its element size.
+/// Uses the project's reader and writer. Throws as readDeck and writeDeck.
+void writeSubdividedAbaqus(const std::filesystem::path& deck, const std::filesystem::path& out);
+
 }  // namespace voxremesh::test
