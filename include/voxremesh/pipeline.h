@@ -3,12 +3,14 @@
 //
 // remeshDeck composes, per selected part (parts in parallel with TBB, each stage parallel inside;
 // the result does not depend on the thread count):
-//   buildSheets -> buildVolume          (partVolume below; sheets.h, volume.h)
-//   -> extractQuadMesh                  (extract.h, issue 4)
-//   -> optimisation -> quality report   (optimize.h, quality.h, issue 5)
-// and then replacePartMeshes (deck_assembly.h) puts all new meshes back into the deck in the
-// order of planRemesh. Each sheet of a part is voxelised, extracted and optimised on its own
-// (partVolumes); the sheets' meshes are then joined at their junction nodes (joinAtJunctions).
+//   buildSheets -> buildVolume          (one sheet's volume at a time; sheets.h, volume.h)
+//   -> extractQuadMesh                  (extract.h)
+//   -> optimisation                     (optimize.h)
+//   -> acceptance, retried at a finer voxel or the part kept (RemeshedPart, PartAcceptance)
+// and then replacePartMeshes (deck_assembly.h) puts the accepted meshes back into the deck in the
+// order of planRemesh. Each sheet of a part is voxelised, extracted and optimised on its own; the
+// sheets' meshes are then joined at their junction nodes (joinAtJunctions). partVolumes builds
+// all sheet volumes of a part at once, for the tools that inspect them.
 #pragma once
 
 #include <cstddef>
@@ -173,10 +175,10 @@ struct RemeshedPart {
   double voxelSize = 0.0;            ///< of the accepted mesh (of the last attempt when kept)
   PartAcceptance acceptance;         ///< of the accepted mesh (of the last attempt when kept)
   std::size_t quads = 0, trias = 0;  ///< of the new mesh (0 when kept)
-  ExtractStats extract;
-  double volumeSeconds = 0.0;    ///< sheets and volume
-  double extractSeconds = 0.0;   ///< extraction
-  double optimizeSeconds = 0.0;  ///< quad optimisation
+  ExtractStats extract;              ///< of the attempt that ended the part
+  double volumeSeconds = 0.0;        ///< sheets and volume (all attempts, as the times below)
+  double extractSeconds = 0.0;       ///< extraction
+  double optimizeSeconds = 0.0;      ///< quad optimisation
 };
 
 /// What remeshDeck did.

@@ -2,8 +2,6 @@
 // acceptance, else kept (remesh_part.h).
 #include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <cstdio>
 #include <exception>
 #include <limits>
 #include <new>
@@ -125,6 +123,7 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
     if (attempt > 0 && voxel < finest * (1 - 1e-9)) break;
     ++part.attempts;
     part.voxelSize = voxel;
+    part.extract = ExtractStats{};  // the counts of the attempt that ends the part
     const std::string at = "size " + formatNumber(voxel) + ": ";
     try {
       std::vector<std::uint8_t> folded;

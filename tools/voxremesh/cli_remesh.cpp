@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -197,7 +198,8 @@ int runRemesh(const std::vector<std::string>& args) {
   Warnings warnings;
   FeModel deck = readDeck(parsed.positional[0], {}, &warnings);
   printWarnings(warnings);
-  const FeModel original = deck;
+  std::optional<FeModel> original;  // the deck before remeshing, for --vtu's distances only
+  if (vtu) original = deck;
   ProgressLine progress(stderr, ProgressLine::isTerminal(stderr) && !parsed.has("--quiet"));
   const RemeshReport report =
       remeshDeck(deck, settings, [&](const std::string& stage, Id part, double done) {
@@ -209,7 +211,7 @@ int runRemesh(const std::vector<std::string>& args) {
     progress.update("quality", "deck", 1.0);
     std::vector<PartQuality> quality;
     tbb::task_arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic)
-        .execute([&] { quality = assessRemeshedParts(original, deck, report); });
+        .execute([&] { quality = assessRemeshedParts(*original, deck, report); });
     writeRemeshQualityVtu(deck, quality, *vtu);
   }
   if (const auto path = parsed.value("--report")) writeRemeshReport(report, *path);
