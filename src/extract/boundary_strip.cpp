@@ -295,34 +295,6 @@ struct JunctionStretches {
 };
 
 /// Builds the strip between dual loop `dual` (point indices) and original loop `loop`.
-/// Arc lengths of loop vertices strictly between s0 and s1 (s0 < s1, both may exceed the length)
-/// that lie farther than `tolerance` from the chord between the points at s0 and s1, chosen
-/// farthest first and recursively (Douglas-Peucker), so that the chords pass every loop vertex
-/// within the tolerance.
-void addFarVertices(const PolylineParam& loop, double s0, double s1, double tolerance,
-                    std::vector<double>& out) {
-  const double length = loop.length();
-  const Vec3d a = loop.pointAt(s0), b = loop.pointAt(s1);
-  double worst = tolerance;
-  double worstParam = -1.0;
-  const std::size_t n = loop.pointCount();
-  for (std::size_t i = 0; i < n; ++i) {
-    for (double wrap : {0.0, length}) {
-      const double v = loop.vertexParam(i) + wrap;
-      if (v <= s0 || v >= s1) continue;
-      const Vec3d ab = b - a, p = loop.point(i);
-      const double len2 = ab.lengthSqr();
-      const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-      const double d = (a + ab * t - p).length();
-      if (d > worst) worst = d, worstParam = v;
-    }
-  }
-  if (worstParam < 0.0) return;
-  addFarVertices(loop, s0, worstParam, tolerance, out);
-  out.push_back(worstParam);
-  addFarVertices(loop, worstParam, s1, tolerance, out);
-}
-
 void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
                 const std::vector<Vec3d>& normals, const TargetLoop& target,
                 const JunctionNodes& junctions, double spacing, double tolerance,

@@ -74,4 +74,28 @@ double PolylineParam::boxDistance(const Vec3d& p) const {
   return (below + above).length();
 }
 
+void addFarVertices(const PolylineParam& line, double s0, double s1, double tolerance,
+                    std::vector<double>& out) {
+  const double length = line.length();
+  const Vec3d a = line.pointAt(s0), b = line.pointAt(s1);
+  double worst = tolerance;
+  double worstParam = -1.0;
+  const std::size_t n = line.pointCount();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (double wrap : {0.0, length}) {
+      const double v = line.vertexParam(i) + wrap;
+      if (v <= s0 || v >= s1) continue;
+      const Vec3d ab = b - a, p = line.point(i);
+      const double len2 = ab.lengthSqr();
+      const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+      const double d = (a + ab * t - p).length();
+      if (d > worst) worst = d, worstParam = v;
+    }
+  }
+  if (worstParam < 0.0) return;
+  addFarVertices(line, s0, worstParam, tolerance, out);
+  out.push_back(worstParam);
+  addFarVertices(line, worstParam, s1, tolerance, out);
+}
+
 }  // namespace voxremesh::extract

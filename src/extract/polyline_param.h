@@ -39,4 +39,11 @@ class PolylineParam {
   openvdb::math::Vec3d boxMin_, boxMax_;
 };
 
+/// Appends to `out` the arc lengths of the polyline's points strictly between s0 and s1 (s0 < s1;
+/// on a closed polyline both may exceed the length) that lie farther than `tolerance` from the
+/// chord between the points at s0 and s1, chosen farthest first and recursively
+/// (Douglas-Peucker), so that the chords pass every point within the tolerance; ascending.
+void addFarVertices(const PolylineParam& line, double s0, double s1, double tolerance,
+                    std::vector<double>& out);
+
 }  // namespace voxremesh::extract

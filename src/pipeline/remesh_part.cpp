@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "extract/narrow_sheet.h"
 #include "pipeline/remesh_part.h"
 #include "voxremesh/errors.h"
 
@@ -15,48 +16,116 @@ namespace voxremesh::pipeline {
 
 namespace {
 
+/// A narrow sheet's chords may lie this share of the target size from it: half the distance limit.
+constexpr double kNarrowChordShare = 0.125;
+/// A narrow sheet's edges across it may be this many times its width (or spacing) long.
+constexpr double kNarrowChordWidths = 3.0;
+
 double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// One attempt's mesh: every sheet written into a volume of the given voxel size, extracted and
-/// optimised (one sheet's volume alive at a time), then joined at the junctions; the faces
-/// folded against their sheet flagged in `folded`.
-QuadMesh meshAtVoxel(const std::vector<Sheet>& sheets, double voxel, const PartPlan& plan,
-                     const RemeshSettings& settings, double junctionSpacing, RemeshedPart& part,
-                     std::vector<std::uint8_t>& folded, const StageCallback& stage) {
-  std::vector<QuadMesh> sheetMeshes;
-  folded.clear();
+/// How one sheet is meshed in an attempt: from its boundary alone (narrow_sheet.h) with nodes
+/// `size` apart, or through a volume of voxel `size`.
+struct SheetPlan {
+  bool fromBoundary = false;
+  double size = 0.0;
+};
+
+/// The junction nodes of a sheet's junction curves, as extraction computes them (extract.cpp).
+extract::JunctionNodes sheetJunctionNodes(const Sheet& sheet, double spacing) {
+  std::vector<VolumeCurve> curves;
+  for (const Polyline& curve : sheet.junctionCurves) {
+    VolumeCurve world;
+    world.closed = curve.closed;
+    for (const PointIndex p : curve.points) world.points.push_back(sheet.points[p]);
+    curves.push_back(std::move(world));
+  }
+  return extract::JunctionNodes(curves, spacing, 0.2 * spacing);
+}
+
+/// One sheet's mesh from its boundary alone (narrow_sheet.h), nodes `spacing` apart along it.
+/// Throws extract::NarrowSheetRefusal when the sheet cannot be meshed so.
+QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
+                          const ReferenceSurface& original, double spacing, double targetSize,
+                          double junctionSpacing) {
+  extract::NarrowSheetSettings narrow;
+  narrow.spacing = spacing;
+  narrow.tolerance = kNarrowChordShare * targetSize;
+  narrow.maxChord = kNarrowChordWidths * std::max(sheetWidth(sheet), spacing);
+  return extract::meshNarrowSheet(sheet, surface, original,
+                                  sheetJunctionNodes(sheet, junctionSpacing), narrow);
+}
+
+/// One sheet's mesh through a volume of the given voxel size, extracted and optimised.
+QuadMesh meshThroughVolume(const Sheet& sheet, const ReferenceSurface& original, double voxel,
+                           const RemeshSettings& settings, double junctionSpacing,
+                           RemeshedPart& part, const StageCallback& stage) {
   VolumeSettings volumeSettings = settings.volume;
   volumeSettings.rule = VoxelSizeRule::TargetElementSize;
   volumeSettings.targetElementSize = voxel;
   ExtractSettings extractSettings = settings.extract;
   if (extractSettings.junctionSpacing <= 0.0) extractSettings.junctionSpacing = junctionSpacing;
+  if (stage) stage("volume");
+  auto start = std::chrono::steady_clock::now();
+  const Volume volume = buildVolume({sheet}, volumeSettings);
+  part.volumeSeconds += since(start);
+  if (stage) stage("extract");
+  start = std::chrono::steady_clock::now();
+  ExtractStats stats;
+  QuadMesh mesh = extractQuadMesh(volume, extractSettings, &stats);
+  addExtractStats(part.extract, stats);
+  part.extractSeconds += since(start);
+  if (settings.optimize) {
+    if (stage) stage("optimize");
+    start = std::chrono::steady_clock::now();
+    OptimizeSettings optimizeSettings = settings.optimizeSettings;
+    optimizeSettings.quality.targetSize = voxel;
+    optimizeQuadMesh(mesh, original, optimizeSettings);
+    part.optimizeSeconds += since(start);
+  }
+  return mesh;
+}
+
+/// The element size a boundary-meshed sheet's mesh is judged against: its node spacing, or
+/// where the sheet is narrower, twice its narrowest element (LS-DYNA characteristic length),
+/// which a row of elements across a strip cannot make wider than the strip.
+double boundaryMeshSize(const QuadMesh& mesh, double spacing) {
+  double narrowest = std::numeric_limits<double>::infinity();
+  for (const ElementQuality& quality : elementQualities(mesh))
+    narrowest = std::min(narrowest, quality.minLength);
+  return std::min(spacing, 2.0 * narrowest);
+}
+
+/// One attempt's mesh: every sheet meshed as its plan says (one sheet's volume alive at a
+/// time), then joined at the junctions; the faces folded against their sheet flagged in
+/// `folded`; `size` receives the element size to judge it against (the smallest any sheet
+/// used: a voxel, or boundaryMeshSize).
+QuadMesh meshSheets(const std::vector<Sheet>& sheets, const std::vector<SheetPlan>& plans,
+                    const PartPlan& plan, const RemeshSettings& settings, double junctionSpacing,
+                    RemeshedPart& part, std::vector<std::uint8_t>& folded, double& size,
+                    const StageCallback& stage) {
+  std::vector<QuadMesh> sheetMeshes;
+  folded.clear();
+  size = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < sheets.size(); ++k) {
     const std::string where = sheets.size() > 1 ? "sheet " + std::to_string(k) + ": " : "";
-    if (stage) stage("volume");
-    auto start = std::chrono::steady_clock::now();
-    const Volume volume = buildVolume({sheets[k]}, volumeSettings);
-    part.volumeSeconds += since(start);
-    if (stage) stage("extract");
-    start = std::chrono::steady_clock::now();
-    ExtractStats stats;
-    try {
-      sheetMeshes.push_back(extractQuadMesh(volume, extractSettings, &stats));
-    } catch (const std::runtime_error& error) {
-      throw std::runtime_error(where + error.what());
-    }
-    addExtractStats(part.extract, stats);
-    part.extractSeconds += since(start);
     const QuadMesh surface = sheetSurface(sheets[k]);
     const ReferenceSurface original(surface);
-    if (settings.optimize) {
-      if (stage) stage("optimize");
-      start = std::chrono::steady_clock::now();
-      OptimizeSettings optimizeSettings = settings.optimizeSettings;
-      optimizeSettings.quality.targetSize = voxel;
-      optimizeQuadMesh(sheetMeshes.back(), original, optimizeSettings);
-      part.optimizeSeconds += since(start);
+    try {
+      if (plans[k].fromBoundary) {
+        sheetMeshes.push_back(meshFromBoundary(sheets[k], surface, original, plans[k].size,
+                                               plan.targetSize, junctionSpacing));
+        size = std::min(size, boundaryMeshSize(sheetMeshes.back(), plans[k].size));
+      } else {
+        sheetMeshes.push_back(meshThroughVolume(sheets[k], original, plans[k].size, settings,
+                                                junctionSpacing, part, stage));
+        size = std::min(size, plans[k].size);
+      }
+    } catch (const SettingError&) {
+      throw;
+    } catch (const std::runtime_error& error) {
+      throw std::runtime_error(where + error.what());
     }
     const std::vector<std::uint8_t> sheetFolds =
         foldedAgainstSheet(sheetMeshes.back(), surface, original);
@@ -67,29 +136,47 @@ QuadMesh meshAtVoxel(const std::vector<Sheet>& sheets, double voxel, const PartP
   return mesh;
 }
 
-/// The voxel that resolves every sheet: the target size, or narrowFeatureVoxels times finer than
-/// the narrowest sheet's width when that is smaller (never below the finest voxel). `note`
-/// receives the reduction in words.
-double resolvingVoxel(const std::vector<Sheet>& sheets, const PartPlan& plan,
-                      const RemeshSettings& settings, std::string& note) {
+/// The first attempt's plan per sheet: a sheet narrower than settings.narrowFeatureVoxels target
+/// sizes is meshed from its boundary when it can be (nodes one target size apart along it, or
+/// twice its width where that is less, so that its elements stay as long as they are wide), else
+/// through a volume with a voxel narrowFeatureVoxels times finer than its width (never below the
+/// finest voxel); other sheets through a volume at the target size. `note` receives the
+/// reductions in words.
+std::vector<SheetPlan> planSheets(const std::vector<Sheet>& sheets, const PartPlan& plan,
+                                  const RemeshSettings& settings, double junctionSpacing,
+                                  std::string& note) {
   const double finest = settings.finestVoxelShare * plan.targetSize;
-  double narrowest = std::numeric_limits<double>::infinity();
-  std::size_t narrowSheet = 0;
+  std::vector<SheetPlan> plans;
   for (std::size_t k = 0; k < sheets.size(); ++k) {
     const double width = sheetWidth(sheets[k]);
-    if (width < narrowest) {
-      narrowest = width;
-      narrowSheet = k;
+    const bool narrow =
+        settings.narrowFeatureVoxels > 0 && width < settings.narrowFeatureVoxels * plan.targetSize;
+    if (!narrow) {
+      plans.push_back({false, plan.targetSize});
+      continue;
+    }
+    const double spacing = std::min(plan.targetSize, 2.0 * width);
+    try {
+      const QuadMesh surface = sheetSurface(sheets[k]);
+      const ReferenceSurface original(surface);
+      meshFromBoundary(sheets[k], surface, original, spacing, plan.targetSize, junctionSpacing);
+      plans.push_back({true, spacing});
+      if (spacing < plan.targetSize)
+        note += std::string(note.empty() ? "" : "; ") + "sheet " + std::to_string(k) + " is " +
+                formatNumber(width) + " wide: one row of elements " + formatNumber(spacing) +
+                " long across it";
+      continue;
+    } catch (const extract::NarrowSheetRefusal& refusal) {
+      const double voxel = std::max(finest, width / settings.narrowFeatureVoxels);
+      plans.push_back({false, voxel});
+      note += std::string(note.empty() ? "" : "; ") + "voxel reduced to " + formatNumber(voxel) +
+              ": sheet " + std::to_string(k) + " is " + formatNumber(width) +
+              " wide, narrower than " + formatNumber(settings.narrowFeatureVoxels) + " voxels of " +
+              formatNumber(plan.targetSize) + ", and not meshed from its boundary (" +
+              refusal.what() + ")";
     }
   }
-  if (!(settings.narrowFeatureVoxels > 0) ||
-      !(narrowest < settings.narrowFeatureVoxels * plan.targetSize))
-    return plan.targetSize;
-  const double voxel = std::max(finest, narrowest / settings.narrowFeatureVoxels);
-  note = "voxel reduced to " + formatNumber(voxel) + ": sheet " + std::to_string(narrowSheet) +
-         " is " + formatNumber(narrowest) + " wide, narrower than " +
-         formatNumber(settings.narrowFeatureVoxels) + " voxels of " + formatNumber(plan.targetSize);
-  return voxel;
+  return plans;
 }
 
 }  // namespace
@@ -115,21 +202,32 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
     return part;
   }
   std::string sizeNote;
-  double voxel = resolvingVoxel(sheets, plan, settings, sizeNote);
+  std::vector<SheetPlan> plans = planSheets(sheets, plan, settings, junctionSpacing, sizeNote);
   const QuadMesh original = quadMeshFromModel(model, plan.part);
   const double finest = settings.finestVoxelShare * plan.targetSize;
   std::vector<std::string> failures;
-  for (int attempt = 0; attempt <= settings.retries; ++attempt, voxel /= 2) {
-    if (attempt > 0 && voxel < finest * (1 - 1e-9)) break;
+  for (int attempt = 0; attempt <= settings.retries; ++attempt) {
+    if (attempt > 0) {  // volumes at half the voxel, boundary-meshed sheets as they were
+      bool finer = false;
+      for (SheetPlan& sheetPlan : plans) {
+        if (sheetPlan.fromBoundary || sheetPlan.size / 2 < finest * (1 - 1e-9)) continue;
+        sheetPlan.size /= 2;
+        finer = true;
+      }
+      if (!finer) break;
+    }
+    double size = std::numeric_limits<double>::infinity();
+    for (const SheetPlan& sheetPlan : plans) size = std::min(size, sheetPlan.size);
     ++part.attempts;
-    part.voxelSize = voxel;
     part.extract = ExtractStats{};  // the counts of the attempt that ends the part
-    const std::string at = "size " + formatNumber(voxel) + ": ";
+    std::string at = "size " + formatNumber(size) + ": ";
     try {
       std::vector<std::uint8_t> folded;
       QuadMesh candidate =
-          meshAtVoxel(sheets, voxel, plan, settings, junctionSpacing, part, folded, stage);
-      part.acceptance = acceptPartMesh(candidate, original, folded, voxel, plan.targetSize,
+          meshSheets(sheets, plans, plan, settings, junctionSpacing, part, folded, size, stage);
+      part.voxelSize = size;
+      at = "size " + formatNumber(size) + ": ";
+      part.acceptance = acceptPartMesh(candidate, original, folded, size, plan.targetSize,
                                        settings.optimizeSettings.quality);
       if (part.acceptance.accepted) {
         part.status = attempt == 0 ? PartStatus::Remeshed : PartStatus::Retried;

@@ -1,0 +1,231 @@
+// Narrow sheets meshed from their boundary alone (see narrow_sheet.h).
+#include "extract/narrow_sheet.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <utility>
+
+#include "extract/polygon_quads.h"
+#include "extract/polyline_param.h"
+#include "extract/sheet_patches.h"
+#include "geometry/vec3.h"
+
+namespace voxremesh::extract {
+
+using namespace geom;  // NOLINT: the vector operators
+
+namespace {
+
+Vec3 toArray(const openvdb::math::Vec3d& p) {
+  return {p[0], p[1], p[2]};
+}
+
+/// A node on the loop: its arc length, position and role.
+struct LoopNode {
+  double param = 0.0;
+  Vec3 point{};
+  PointRole role = PointRole::Boundary;
+};
+
+/// The loop segment holding arc length v (in [0, length)).
+std::size_t segmentAt(const PolylineParam& loop, double v) {
+  std::size_t lo = 0, hi = loop.pointCount();
+  while (hi - lo > 1) {
+    const std::size_t mid = (lo + hi) / 2;
+    (loop.vertexParam(mid) <= v ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+/// The arc lengths in [c0, c1] (c1 may pass the length once) of the loop's closest points there
+/// to each of `sources` within `reach` of it, ascending.
+std::vector<double> facingParams(const PolylineParam& loop, double c0, double c1,
+                                 const std::vector<Vec3>& sources, double reach) {
+  const double length = loop.length();
+  const std::size_t m = loop.pointCount();
+  std::vector<double> params;
+  for (const Vec3& source : sources) {
+    const openvdb::math::Vec3d p(source[0], source[1], source[2]);
+    double best = reach, bestParam = -1.0;
+    // The segments overlapping [c0, c1], with their arc lengths unwrapped past c0.
+    for (std::size_t step = 0, s = segmentAt(loop, std::fmod(c0, length)); step <= m;
+         ++step, s = (s + 1) % m) {
+      double v0 = loop.vertexParam(s), v1 = loop.vertexParam(s + 1);
+      while (v1 <= c0) v0 += length, v1 += length;
+      if (v0 >= c1) break;
+      const openvdb::math::Vec3d a = loop.point(s), ab = loop.point((s + 1) % m) - a;
+      const double len2 = ab.lengthSqr();
+      double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+      t = std::clamp(v0 + t * (v1 - v0), c0, c1);
+      const double d = (loop.pointAt(t) - p).length();
+      if (d < best) best = d, bestParam = t;
+    }
+    if (bestParam > c0 && bestParam < c1) params.push_back(bestParam);
+  }
+  std::sort(params.begin(), params.end());
+  return params;
+}
+
+/// The nodes on the loop (see narrow_sheet.h), ascending arc length.
+std::vector<LoopNode> loopNodes(const std::vector<Vec3>& points, const std::vector<char>& corner,
+                                const JunctionNodes& junctions, double spacing, double tolerance,
+                                double reach) {
+  const PolylineParam loop(points, true);
+  const std::size_t m = points.size();
+  const double length = loop.length();
+  std::vector<const JunctionEdgeNodes*> junctionEdge(m, nullptr);
+  for (std::size_t s = 0; s < m; ++s)
+    junctionEdge[s] = junctions.edge(points[s], points[(s + 1) % m]);
+  auto onJunction = [&](double v) { return junctionEdge[segmentAt(loop, v)] != nullptr; };
+
+  std::vector<LoopNode> anchors;
+  for (std::size_t s = 0; s < m; ++s) {
+    const JunctionEdgeNodes* edge = junctionEdge[s];
+    if (edge == nullptr) continue;
+    const double s0 = loop.vertexParam(s), s1 = loop.vertexParam(s + 1);
+    const bool forward = edge->from == points[s];
+    for (std::size_t j = 0; j < edge->along.size(); ++j) {
+      const double t = forward ? edge->along[j] : 1.0 - edge->along[j];
+      anchors.push_back({s0 + t * (s1 - s0), edge->points[j], PointRole::Junction});
+    }
+    for (const std::size_t end : {s, s + 1}) {  // a stretch's ends and the curve's own nodes
+      const std::size_t other = end == s ? (s + m - 1) % m : (s + 1) % m;
+      if (junctions.isNodePoint(points[end % m]) || junctionEdge[other] == nullptr)
+        anchors.push_back(
+            {std::fmod(loop.vertexParam(end), length), points[end % m], PointRole::Junction});
+    }
+  }
+  for (std::size_t i = 0; i < m; ++i)
+    if (corner[i]) anchors.push_back({loop.vertexParam(i), points[i], PointRole::Corner});
+  std::stable_sort(anchors.begin(), anchors.end(), [](const LoopNode& a, const LoopNode& b) {
+    return a.param < b.param ||
+           (a.param == b.param && a.role == PointRole::Junction && b.role != PointRole::Junction);
+  });
+  anchors.erase(std::unique(anchors.begin(), anchors.end(),
+                            [&](const LoopNode& a, const LoopNode& b) {
+                              return b.param - a.param <= 1e-12 * length;
+                            }),
+                anchors.end());
+  if (anchors.empty()) anchors.push_back({0.0, points[0], PointRole::Boundary});
+
+  auto gapEnd = [&](const std::vector<LoopNode>& nodes, std::size_t j) {
+    return j + 1 < nodes.size() ? nodes[j + 1].param : nodes[0].param + length;
+  };
+  auto free = [&](const std::vector<LoopNode>& nodes, std::size_t j) {
+    const double middle = std::fmod(0.5 * (nodes[j].param + gapEnd(nodes, j)), length);
+    return !(nodes[j].role == PointRole::Junction &&
+             nodes[(j + 1) % nodes.size()].role == PointRole::Junction && onJunction(middle));
+  };
+  auto nodeAt = [&](double v) {
+    v = std::fmod(v, length);
+    return LoopNode{v, toArray(loop.pointAt(v)), PointRole::Boundary};
+  };
+  // Free stretches in loop order: first the points facing nodes already placed across the
+  // sheet (so that rows run straight across), then even pieces about `spacing` long between.
+  std::vector<LoopNode> nodes = anchors;
+  for (std::size_t j = 0; j < anchors.size(); ++j) {
+    if (!free(anchors, j)) continue;
+    const double c0 = anchors[j].param, c1 = gapEnd(anchors, j);
+    std::vector<Vec3> placed;
+    for (const LoopNode& node : nodes) placed.push_back(node.point);
+    std::vector<double> breaks{c0};
+    for (const double v : facingParams(loop, c0, c1, placed, reach))
+      if (v - breaks.back() >= 0.5 * spacing && c1 - v >= 0.5 * spacing) breaks.push_back(v);
+    breaks.push_back(c1);
+    for (std::size_t b = 0; b + 1 < breaks.size(); ++b) {
+      if (b > 0) nodes.push_back(nodeAt(breaks[b]));
+      const long pieces = std::max(1L, std::lround((breaks[b + 1] - breaks[b]) / spacing));
+      for (long q = 1; q < pieces; ++q)
+        nodes.push_back(
+            nodeAt(breaks[b] + (breaks[b + 1] - breaks[b]) * double(q) / double(pieces)));
+    }
+  }
+  std::stable_sort(nodes.begin(), nodes.end(),
+                   [](const LoopNode& a, const LoopNode& b) { return a.param < b.param; });
+  std::vector<double> far;
+  for (std::size_t j = 0; j < nodes.size(); ++j)
+    if (free(nodes, j)) addFarVertices(loop, nodes[j].param, gapEnd(nodes, j), tolerance, far);
+  for (const double v : far) nodes.push_back(nodeAt(v));
+  auto byParam = [](const LoopNode& a, const LoopNode& b) { return a.param < b.param; };
+  std::stable_sort(nodes.begin(), nodes.end(), byParam);
+  if (nodes.size() % 2 == 1) {  // quads only need an even count: split the longest free gap
+    std::size_t widest = nodes.size();
+    for (std::size_t j = 0; j < nodes.size(); ++j)
+      if (free(nodes, j) &&
+          (widest == nodes.size() ||
+           gapEnd(nodes, j) - nodes[j].param > gapEnd(nodes, widest) - nodes[widest].param))
+        widest = j;
+    if (widest < nodes.size()) {
+      nodes.push_back(nodeAt(0.5 * (nodes[widest].param + gapEnd(nodes, widest))));
+      std::stable_sort(nodes.begin(), nodes.end(), byParam);
+    }
+  }
+  return nodes;
+}
+
+/// True when points sampled along the chord a-b, at most a quarter of `spacing` apart, all lie
+/// within `tolerance` of the surface.
+bool chordOnSurface(const Vec3& a, const Vec3& b, const ReferenceSurface& reference, double spacing,
+                    double tolerance) {
+  const long samples = std::max(4L, long(std::ceil(distance(a, b) / (0.25 * spacing))));
+  for (long q = 1; q < samples; ++q)
+    if (reference.closestPoint(a + (b - a) * (double(q) / double(samples))).distance > tolerance)
+      return false;
+  return true;
+}
+
+/// The mesh of one patch from the nodes of its loop (see narrow_sheet.h).
+QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& corner,
+                  const QuadMesh& surface, const ReferenceSurface& reference,
+                  const JunctionNodes& junctions, const NarrowSheetSettings& settings) {
+  const std::vector<LoopNode> nodes = loopNodes(loopPoints, corner, junctions, settings.spacing,
+                                                settings.tolerance, settings.maxChord);
+  QuadMesh mesh;
+  mesh.curves.push_back({loopPoints, true, PointRole::Boundary});
+  std::vector<Vec3> normals;
+  for (const LoopNode& node : nodes) {
+    mesh.points.push_back(node.point);
+    mesh.constraints.push_back({node.role, 0});
+    const auto& face = surface.faces[reference.closestPoint(node.point).face];
+    const bool triangle = cornerCount(face) == 3;
+    normals.push_back(elementNormal(surface.points[face[0]], surface.points[face[1]],
+                                    surface.points[face[2]], surface.points[face[triangle ? 2 : 3]],
+                                    triangle));
+  }
+  const std::vector<PolygonFace> faces =
+      polygonQuads(mesh.points, normals, settings.maxChord, [&](std::size_t i, std::size_t j) {
+        return chordOnSurface(mesh.points[i], mesh.points[j], reference, settings.spacing,
+                              settings.tolerance);
+      });
+  if (faces.empty())
+    throw NarrowSheetRefusal("no row of faces across it between its " +
+                             std::to_string(nodes.size()) + " boundary nodes stays on it");
+  for (const PolygonFace& face : faces)
+    mesh.faces.push_back({face[0], face[1], face[2], face[3] == UINT32_MAX ? kNoCorner : face[3]});
+  return mesh;
+}
+
+}  // namespace
+
+QuadMesh meshNarrowSheet(const Sheet& sheet, const QuadMesh& surface,
+                         const ReferenceSurface& reference, const JunctionNodes& junctions,
+                         const NarrowSheetSettings& settings) {
+  if (!(settings.spacing > 0.0) || !(settings.tolerance > 0.0) || !(settings.maxChord > 0.0))
+    throw std::invalid_argument("meshNarrowSheet: spacing, tolerance and maxChord must be > 0");
+  const std::set<PointIndex> corners(sheet.featurePoints.begin(), sheet.featurePoints.end());
+  std::vector<QuadMesh> patchMeshes;
+  for (const SheetPatch& patch : sheetPatches(sheet)) {
+    std::vector<Vec3> loopPoints;
+    std::vector<char> corner;
+    for (const PointIndex p : patch.loop) {
+      loopPoints.push_back(sheet.points[p]);
+      corner.push_back(corners.count(p) != 0);
+    }
+    patchMeshes.push_back(meshLoop(loopPoints, corner, surface, reference, junctions, settings));
+    patchMeshes.back().part = sheet.part;
+  }
+  return joinAtJunctions(patchMeshes);
+}
+
+}  // namespace voxremesh::extract

@@ -1,0 +1,55 @@
+// Narrow sheets meshed from their boundary alone (DESIGN.md, "Sizing resolves the part": a narrow
+// strip is better meshed with rows along it than with small elements everywhere).
+//
+// A sheet narrower than a few voxels leaves the volume's dual mesh too little room: the strip
+// between the dual mesh and the boundary cannot be zipped, or pieces and loops are lost. Such a
+// sheet, when it is a disk (one boundary loop), gets nodes on its boundary only and one row of
+// quads across it:
+// - Nodes on the loop: its corners; on junction stretches (edges of junction curves) the nodes the
+//   junction curves prescribe (junction_nodes.h), with their exact coordinates, so that the
+//   neighbouring sheet or part gets the same ones; between those, nodes evenly spaced about
+//   `spacing` apart along the loop, and loop points farther than `tolerance` from the chord
+//   between two nodes (Douglas-Peucker); one more node where the count would be odd.
+// - Faces: polygonQuads over those nodes (polygon_quads.h), chords allowed where points sampled
+//   along them lie within `tolerance` of the sheet, faces agreeing with the sheet's normals.
+// The mesh is of the same kind as an extracted one: nodes with role Corner, Junction or Boundary
+// on curve 0, the loop.
+#pragma once
+
+#include <stdexcept>
+
+#include "extract/junction_nodes.h"
+#include "voxremesh/quad_mesh.h"
+#include "voxremesh/reference_surface.h"
+#include "voxremesh/sheets.h"
+
+namespace voxremesh::extract {
+
+/// Why a sheet cannot be meshed from its boundary: not a disk, a junction inside it, or no mesh
+/// of its boundary nodes near enough to it.
+class NarrowSheetRefusal : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Settings of meshNarrowSheet.
+struct NarrowSheetSettings {
+  double spacing = 0.0;    ///< distance of the nodes along free stretches of the loop, > 0
+  double tolerance = 0.0;  ///< largest distance of a face's chords from the sheet, > 0
+  double maxChord = 0.0;   ///< the longest edge across the sheet, > 0
+};
+
+/// Meshes a disk-like sheet from its boundary nodes (see the top of the file).
+/// @param sheet      the sheet: one boundary loop running with the sheet on its left
+/// @param surface    sheetSurface of the sheet (its faces, oriented as the sheet)
+/// @param reference  the closest-point structure built from `surface`
+/// @param junctions  the nodes of the junction curves (those of the sheet's part)
+/// @param settings   see NarrowSheetSettings
+/// @return the mesh, oriented as the sheet, part sheet.part
+/// Throws std::invalid_argument for settings not > 0; NarrowSheetRefusal (with the reason) when
+/// the sheet is not a disk, a junction curve runs through its inside, or no mesh fits.
+QuadMesh meshNarrowSheet(const Sheet& sheet, const QuadMesh& surface,
+                         const ReferenceSurface& reference, const JunctionNodes& junctions,
+                         const NarrowSheetSettings& settings);
+
+}  // namespace voxremesh::extract

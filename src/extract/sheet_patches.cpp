@@ -1,0 +1,125 @@
+// The patches of a narrow sheet (see sheet_patches.h).
+#include "extract/sheet_patches.h"
+
+#include <map>
+#include <numeric>
+#include <set>
+#include <string>
+#include <utility>
+
+#include "extract/narrow_sheet.h"
+
+namespace voxremesh::extract {
+
+namespace {
+
+using Edge = std::pair<PointIndex, PointIndex>;
+
+Edge edgeKey(PointIndex a, PointIndex b) {
+  return a < b ? Edge{a, b} : Edge{b, a};
+}
+
+int corners(const std::array<PointIndex, 4>& face) {
+  return face[3] == kNoPoint ? 3 : 4;
+}
+
+/// The root of x in a union-find forest, halving the path.
+std::size_t findRoot(std::vector<std::size_t>& parent, std::size_t x) {
+  while (parent[x] != x) x = parent[x] = parent[parent[x]];
+  return x;
+}
+
+/// The inner junction edges of a sheet (see sheetPatches).
+std::set<Edge> innerJunctionEdges(const Sheet& sheet) {
+  std::set<PointIndex> onLoops;
+  for (const Polyline& loop : sheet.boundaryLoops)
+    onLoops.insert(loop.points.begin(), loop.points.end());
+  std::set<Edge> cuts;
+  for (const Polyline& curve : sheet.junctionCurves) {
+    const std::size_t n = curve.points.size();
+    for (std::size_t i = 0; i + 1 < n + (curve.closed ? 1 : 0); ++i) {
+      const PointIndex a = curve.points[i], b = curve.points[(i + 1) % n];
+      if (onLoops.count(a) == 0 || onLoops.count(b) == 0) cuts.insert(edgeKey(a, b));
+    }
+  }
+  return cuts;
+}
+
+/// The boundary loop of one patch: its faces' directed edges whose reverse is not in the patch.
+std::vector<PointIndex> patchLoop(const Sheet& sheet, const std::vector<std::size_t>& faces) {
+  std::set<Edge> directed;
+  for (const std::size_t f : faces)
+    for (int c = 0; c < corners(sheet.faces[f]); ++c)
+      directed.insert({sheet.faces[f][std::size_t(c)],
+                       sheet.faces[f][std::size_t((c + 1) % corners(sheet.faces[f]))]});
+  std::map<PointIndex, PointIndex> next;
+  for (const auto& [a, b] : directed) {
+    if (directed.count({b, a}) != 0) continue;
+    if (!next.emplace(a, b).second)
+      throw NarrowSheetRefusal("a patch of it touches itself at a point");
+  }
+  if (next.empty()) throw NarrowSheetRefusal("a patch of it has no boundary");
+  std::vector<PointIndex> loop{next.begin()->first};
+  for (PointIndex p = next.begin()->second; p != loop.front(); p = next.at(p)) {
+    loop.push_back(p);
+    if (loop.size() > next.size()) break;
+  }
+  if (loop.size() != next.size())
+    throw NarrowSheetRefusal("a patch of it has more than one boundary loop");
+  return loop;
+}
+
+/// Refuses a patch that is not a disk: Euler characteristic V - E + F other than 1.
+void checkDisk(const Sheet& sheet, const std::vector<std::size_t>& faces) {
+  std::set<Edge> edges;
+  std::set<PointIndex> points;
+  for (const std::size_t f : faces) {
+    const int n = corners(sheet.faces[f]);
+    for (int c = 0; c < n; ++c) {
+      points.insert(sheet.faces[f][std::size_t(c)]);
+      edges.insert(
+          edgeKey(sheet.faces[f][std::size_t(c)], sheet.faces[f][std::size_t((c + 1) % n)]));
+    }
+  }
+  const long euler = long(points.size()) - long(edges.size()) + long(faces.size());
+  if (euler != 1)
+    throw NarrowSheetRefusal("it is not a disk (Euler characteristic " + std::to_string(euler) +
+                             ")");
+}
+
+}  // namespace
+
+std::vector<SheetPatch> sheetPatches(const Sheet& sheet) {
+  const std::set<Edge> cuts = innerJunctionEdges(sheet);
+  std::map<Edge, std::vector<std::size_t>> edgeFaces;
+  for (std::size_t f = 0; f < sheet.faces.size(); ++f)
+    for (int c = 0; c < corners(sheet.faces[f]); ++c)
+      edgeFaces[edgeKey(sheet.faces[f][std::size_t(c)],
+                        sheet.faces[f][std::size_t((c + 1) % corners(sheet.faces[f]))])]
+          .push_back(f);
+  std::vector<std::size_t> parent(sheet.faces.size());
+  std::iota(parent.begin(), parent.end(), std::size_t{0});
+  for (const auto& [edge, faces] : edgeFaces)
+    if (faces.size() == 2 && cuts.count(edge) == 0)
+      parent[findRoot(parent, faces[1])] = findRoot(parent, faces[0]);
+  for (const Edge& cut : cuts) {
+    const auto it = edgeFaces.find(cut);
+    if (it != edgeFaces.end() && it->second.size() == 2 &&
+        findRoot(parent, it->second[0]) == findRoot(parent, it->second[1]))
+      throw NarrowSheetRefusal("a junction curve ends inside it");
+  }
+  std::map<std::size_t, std::size_t> patchOfRoot;
+  std::vector<SheetPatch> patches;
+  for (std::size_t f = 0; f < sheet.faces.size(); ++f) {
+    const auto [it, added] = patchOfRoot.emplace(findRoot(parent, f), patches.size());
+    if (added) patches.emplace_back();
+    patches[it->second].faces.push_back(f);
+  }
+  for (SheetPatch& patch : patches) {
+    checkDisk(sheet, patch.faces);
+    patch.loop = patchLoop(sheet, patch.faces);
+  }
+  return patches;
+}
+
+}  // namespace voxremesh::extract

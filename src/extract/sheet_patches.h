@@ -1,0 +1,29 @@
+// The patches of a narrow sheet (narrow_sheet.h): the sheet cut along its junction curves that
+// run through its inside (where another part or sheet meets it along a line inside, e.g. a web on
+// the middle of a spar cap), so that each patch is meshed from its own boundary and the nodes on
+// the cut are those the junction curve prescribes, on both sides.
+#pragma once
+
+#include <vector>
+
+#include "voxremesh/sheets.h"
+
+namespace voxremesh::extract {
+
+/// A patch: its faces (indices into Sheet::faces) and its one boundary loop (sheet points,
+/// running with the patch on its left).
+struct SheetPatch {
+  std::vector<std::size_t> faces;
+  std::vector<PointIndex> loop;
+};
+
+/// Cuts a sheet into patches along its inner junction edges: junction-curve edges with a face on
+/// both sides, except those joining two points of the sheet's boundary loops (a rung across a
+/// strip whose two sides meet the same part is no line of its own).
+/// @param sheet  a sheet (buildSheets): manifold, consistently oriented
+/// @return the patches in the order of their first face
+/// Throws NarrowSheetRefusal when a patch is not a disk with one boundary loop (Euler
+/// characteristic 1), or a junction curve ends inside a patch.
+std::vector<SheetPatch> sheetPatches(const Sheet& sheet);
+
+}  // namespace voxremesh::extract
