@@ -17,6 +17,10 @@ using namespace geom;  // NOLINT: the vector operators
 
 namespace {
 
+/// A node facing one across the sheet is placed only this share of the spacing or more from the
+/// nodes before and after it on the loop (so no piece is much shorter than the spacing).
+constexpr double kShortestPiece = 0.4;
+
 Vec3 toArray(const openvdb::math::Vec3d& p) {
   return {p[0], p[1], p[2]};
 }
@@ -122,16 +126,19 @@ std::vector<LoopNode> loopNodes(const std::vector<Vec3>& points, const std::vect
     return LoopNode{v, toArray(loop.pointAt(v)), PointRole::Boundary};
   };
   // Free stretches in loop order: first the points facing nodes already placed across the
-  // sheet (so that rows run straight across), then even pieces about `spacing` long between.
+  // sheet (so that rows run straight across; corners excepted), then even pieces about
+  // `spacing` long between.
   std::vector<LoopNode> nodes = anchors;
   for (std::size_t j = 0; j < anchors.size(); ++j) {
     if (!free(anchors, j)) continue;
     const double c0 = anchors[j].param, c1 = gapEnd(anchors, j);
     std::vector<Vec3> placed;
-    for (const LoopNode& node : nodes) placed.push_back(node.point);
+    for (const LoopNode& node : nodes)  // a corner across (a strip's tapered end) is no row
+      if (node.role != PointRole::Corner) placed.push_back(node.point);
     std::vector<double> breaks{c0};
     for (const double v : facingParams(loop, c0, c1, placed, reach))
-      if (v - breaks.back() >= 0.5 * spacing && c1 - v >= 0.5 * spacing) breaks.push_back(v);
+      if (v - breaks.back() >= kShortestPiece * spacing && c1 - v >= kShortestPiece * spacing)
+        breaks.push_back(v);
     breaks.push_back(c1);
     for (std::size_t b = 0; b + 1 < breaks.size(); ++b) {
       if (b > 0) nodes.push_back(nodeAt(breaks[b]));

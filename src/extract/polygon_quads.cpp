@@ -109,7 +109,8 @@ std::vector<PolygonFace> polygonQuads(const std::vector<Vec3>& corners,
       }
     }
   }
-  if (cost[0].back() == kInfinite) return {};
+  const std::ptrdiff_t root = slot(0, n - 1);
+  if (root < 0 || cost[0][std::size_t(root)] == kInfinite) return {};
 
   // The triangles, each after the one on its outer chord (the root on edge 0 - (n-1)).
   std::vector<Triangle> triangles;

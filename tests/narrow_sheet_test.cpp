@@ -1,0 +1,186 @@
+// Narrow sheets meshed from their boundary (src/extract/narrow_sheet.h, polygon_quads.h,
+// sheet_patches.h): one row of quads across a strip, nodes only on the boundary, junction nodes
+// shared across a cut, refusals where the boundary alone cannot carry the surface.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <vector>
+
+#include "extract/narrow_sheet.h"
+#include "extract/polygon_quads.h"
+#include "extract/sheet_patches.h"
+#include "geometry/vec3.h"
+#include "pipeline/remesh_part.h"
+#include "voxremesh/quality.h"
+
+using namespace voxremesh;
+
+namespace {
+
+/// A strip of columns x rows quads, each `along` long in x and `across` wide in y, in the plane
+/// z = 0 (or folded about the line y = fold by 90 degrees into z when fold > 0); shells of the
+/// rows below `splitRow` belong to part 1, the others to part 2 (so that they share a line).
+FeModel strip(int columns, int rows, double along, double across, int splitRow = 1000,
+              double fold = 0.0) {
+  FeModel model;
+  auto id = [&](int i, int j) { return Id(j * (columns + 1) + i + 1); };
+  for (int j = 0; j <= rows; ++j) {
+    for (int i = 0; i <= columns; ++i) {
+      const double y = j * across;
+      const bool folded = fold > 0.0 && y > fold;
+      model.nodes.push_back({id(i, j), {i * along, folded ? fold : y, folded ? y - fold : 0.0}});
+    }
+  }
+  Id shell = 1;
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < columns; ++i)
+      model.shells.push_back({shell++,
+                              j < splitRow ? Id(1) : Id(2),
+                              {id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)}});
+  model.partOrAdd(1);
+  if (splitRow < rows) model.partOrAdd(2);
+  return model;
+}
+
+/// Meshes the part's one sheet from its boundary with nodes `spacing` apart.
+QuadMesh meshStrip(const FeModel& model, Id part, double spacing, double tolerance = 0.1,
+                   double junctionSpacing = 0.0) {
+  const std::vector<Sheet> sheets = buildSheets(model, part);
+  EXPECT_EQ(sheets.size(), 1u);
+  const QuadMesh surface = pipeline::sheetSurface(sheets.front());
+  const ReferenceSurface reference(surface);
+  std::vector<VolumeCurve> curves;
+  for (const Polyline& curve : sheets.front().junctionCurves) {
+    VolumeCurve world;
+    world.closed = curve.closed;
+    for (const PointIndex p : curve.points) world.points.push_back(sheets.front().points[p]);
+    curves.push_back(world);
+  }
+  const double jSpacing = junctionSpacing > 0.0 ? junctionSpacing : spacing;
+  const extract::JunctionNodes junctions(curves, jSpacing, 0.2 * jSpacing);
+  extract::NarrowSheetSettings settings;
+  settings.spacing = spacing;
+  settings.tolerance = tolerance;
+  settings.maxChord = 3.0 * spacing;
+  return extract::meshNarrowSheet(sheets.front(), surface, reference, junctions, settings);
+}
+
+std::size_t triangleCount(const QuadMesh& mesh) {
+  std::size_t count = 0;
+  for (const auto& face : mesh.faces) count += cornerCount(face) == 3;
+  return count;
+}
+
+/// Face normals (length: twice the area; a quad's from its diagonals).
+std::vector<geom::Vec3> normals(const QuadMesh& mesh) {
+  std::vector<geom::Vec3> out;
+  for (const auto& f : mesh.faces) {
+    const bool triangle = cornerCount(f) == 3;
+    out.push_back(geom::elementNormal(mesh.points[f[0]], mesh.points[f[1]], mesh.points[f[2]],
+                                      mesh.points[f[triangle ? 2 : 3]], triangle));
+  }
+  return out;
+}
+
+double area(const QuadMesh& mesh) {
+  double total = 0.0;
+  for (const geom::Vec3& normal : normals(mesh)) total += 0.5 * geom::norm(normal);
+  return total;
+}
+
+}  // namespace
+
+TEST(NarrowSheet, AStripGetsOneRowOfQuadsAcrossAtTheSpacing) {
+  // 2 x 40 mm in 20 x 1 elements of 2 x 2; meshed at 4 mm: 10 quads of 4 x 2.
+  const QuadMesh mesh = meshStrip(strip(20, 1, 2.0, 2.0), 1, 4.0);
+  EXPECT_EQ(triangleCount(mesh), 0u);
+  EXPECT_EQ(mesh.faces.size(), 10u);
+  EXPECT_NEAR(area(mesh), 80.0, 1e-9);
+  for (const ElementQuality& quality : elementQualities(mesh))
+    EXPECT_NEAR(quality.minAngleDeg, 90.0, 1e-6);
+  for (const geom::Vec3& normal : normals(mesh)) EXPECT_GT(normal[2], 0.0);  // as the sheet
+  for (const PointConstraint& constraint : mesh.constraints)
+    EXPECT_NE(constraint.role, PointRole::Free);  // every node on the boundary
+}
+
+TEST(NarrowSheet, ATaperedEndStillGetsQuadsWhereTheNodesFace) {
+  // A trapezoid strip: the ladder's rungs run straight across where the nodes face each other.
+  FeModel model = strip(10, 1, 4.0, 3.0);
+  for (Node& node : model.nodes)
+    if (node.xyz[1] > 0.0) node.xyz[0] = 2.0 + node.xyz[0] * 0.9;
+  const QuadMesh mesh = meshStrip(model, 1, 4.0);
+  EXPECT_LE(triangleCount(mesh), 1u);
+  for (const ElementQuality& quality : elementQualities(mesh)) EXPECT_GT(quality.minAngleDeg, 30.0);
+}
+
+TEST(NarrowSheet, AJunctionThroughTheMiddleCutsTheSheetAndBothSidesShareItsNodes) {
+  // Two rows, the lower of part 1 and the upper of part 2, over a third part 3 whose edge meets
+  // the middle line of a part-1 strip two rows wide: the strip is cut there.
+  FeModel model = strip(12, 2, 2.0, 1.5);
+  // Part 3: a web standing on the middle line y = 1.5.
+  const Id base = 1000;
+  for (int i = 0; i <= 12; ++i) model.nodes.push_back({base + Id(i), {2.0 * i, 1.5, 3.0}});
+  for (int i = 0; i < 12; ++i)
+    model.shells.push_back(
+        {Id(500 + i), 3, {Id(i + 14), Id(i + 15), base + Id(i + 1), base + Id(i)}, 4});
+  model.partOrAdd(3);
+  const std::vector<Sheet> sheets = buildSheets(model, 1);
+  ASSERT_EQ(sheets.size(), 1u);
+  const std::vector<extract::SheetPatch> patches = extract::sheetPatches(sheets.front());
+  ASSERT_EQ(patches.size(), 2u);
+  const QuadMesh mesh = meshStrip(model, 1, 4.0, 0.1, 4.0);
+  EXPECT_EQ(triangleCount(mesh), 0u);
+  EXPECT_NEAR(area(mesh), 24.0 * 3.0, 1e-9);
+  // The middle line's nodes are shared: one node per junction node, each used by faces above
+  // and below.
+  std::size_t middle = 0;
+  for (std::size_t p = 0; p < mesh.points.size(); ++p) {
+    if (std::abs(mesh.points[p][1] - 1.5) > 1e-12) continue;
+    ++middle;
+    EXPECT_EQ(mesh.constraints[p].role, PointRole::Junction);
+  }
+  EXPECT_EQ(middle, 7u);  // 24 mm at 4 mm: 6 pieces
+}
+
+TEST(NarrowSheet, AFoldAcrossTheStripThatNoChordFollowsIsRefused) {
+  // 4 mm wide, folded by 90 degrees along its middle line: a chord across cuts the fold's corner
+  // by 1.41 mm, more than the tolerance, and the fold has no boundary node to pass through.
+  const FeModel model = strip(10, 2, 4.0, 2.0, 1000, 2.0);
+  EXPECT_THROW(meshStrip(model, 1, 4.0, 0.5), extract::NarrowSheetRefusal);
+  // With a tolerance that allows it, the same strip gets its row.
+  EXPECT_NO_THROW(meshStrip(model, 1, 4.0, 2.0));
+}
+
+TEST(NarrowSheet, AnAnnulusIsNoDisk) {
+  // A square ring: one strip around a hole.
+  FeModel model = strip(4, 4, 1.0, 1.0);
+  model.shells.erase(model.shells.begin() + 5, model.shells.begin() + 7);  // row 1, i = 1, 2
+  model.shells.erase(model.shells.begin() + 7, model.shells.begin() + 9);  // row 2, i = 1, 2
+  const std::vector<Sheet> sheets = buildSheets(model, 1);
+  ASSERT_EQ(sheets.size(), 1u);
+  EXPECT_THROW(extract::sheetPatches(sheets.front()), extract::NarrowSheetRefusal);
+}
+
+TEST(PolygonQuads, AnLShapedPolygonIsCoveredByQuads) {
+  // An L of width 1: (0,0) (3,0) (3,1) (1,1) (1,3) (0,3), with points every 1 along its sides.
+  const std::vector<std::array<double, 3>> corners{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0},
+                                                   {3, 1, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0},
+                                                   {1, 3, 0}, {0, 3, 0}, {0, 2, 0}, {0, 1, 0}};
+  const std::vector<std::array<double, 3>> up(corners.size(), {0.0, 0.0, 1.0});
+  const auto faces =
+      extract::polygonQuads(corners, up, 3.0, [](std::size_t, std::size_t) { return true; });
+  ASSERT_EQ(faces.size(), 5u);
+  QuadMesh mesh;
+  mesh.points = corners;
+  for (const auto& face : faces) {
+    EXPECT_NE(face[3], UINT32_MAX);
+    mesh.faces.push_back({face[0], face[1], face[2], face[3]});
+  }
+  EXPECT_NEAR(area(mesh), 5.0, 1e-12);
+  // Facing down, no triangle agrees with the normals: no mesh.
+  const std::vector<std::array<double, 3>> down(corners.size(), {0.0, 0.0, -1.0});
+  EXPECT_TRUE(extract::polygonQuads(corners, down, 3.0, [](std::size_t, std::size_t) {
+                return true;
+              }).empty());
+}
