@@ -184,3 +184,31 @@ TEST(PolygonQuads, AnLShapedPolygonIsCoveredByQuads) {
                 return true;
               }).empty());
 }
+
+TEST(NarrowSheet, AFourSidedPatchTwoElementsWideGetsAGridWithNodesInside) {
+  // 12 x 8 mm in 3 x 2 elements, meshed at 4 mm: a 3 x 2 grid, its two inner nodes on the plate.
+  const QuadMesh mesh = meshStrip(strip(3, 2, 4.0, 4.0), 1, 4.0);
+  EXPECT_EQ(mesh.faces.size(), 6u);
+  EXPECT_EQ(triangleCount(mesh), 0u);
+  std::size_t inner = 0;
+  for (std::size_t p = 0; p < mesh.points.size(); ++p) {
+    if (mesh.constraints[p].role != PointRole::Free) continue;
+    ++inner;
+    EXPECT_NEAR(mesh.points[p][1], 4.0, 1e-9);
+    EXPECT_NEAR(mesh.points[p][2], 0.0, 1e-12);
+  }
+  EXPECT_EQ(inner, 2u);
+  for (const ElementQuality& quality : elementQualities(mesh))
+    EXPECT_NEAR(quality.minAngleDeg, 90.0, 1e-6);
+}
+
+TEST(NarrowSheet, AFreeSideIsSpacedAgainToMatchTheSideAcross) {
+  // A strip 5 mm wide whose long sides differ (40 and 34 mm): at 4 mm one would get 10 pieces, the
+  // other 8 or 9; the grid spaces the second again with 10 so that every element is a quad.
+  FeModel model = strip(10, 1, 4.0, 5.0);
+  for (Node& node : model.nodes)
+    if (node.xyz[1] > 0.0) node.xyz[0] = 3.0 + node.xyz[0] * 0.85;
+  const QuadMesh mesh = meshStrip(model, 1, 4.0);
+  EXPECT_EQ(triangleCount(mesh), 0u);
+  EXPECT_EQ(mesh.faces.size(), 10u);
+}

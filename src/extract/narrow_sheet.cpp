@@ -6,6 +6,7 @@
 #include <set>
 #include <utility>
 
+#include "extract/mapped_patch.h"
 #include "extract/polygon_quads.h"
 #include "extract/polyline_param.h"
 #include "extract/sheet_patches.h"
@@ -20,17 +21,13 @@ namespace {
 /// A node facing one across the sheet is placed only this share of the spacing or more from the
 /// nodes before and after it on the loop (so no piece is much shorter than the spacing).
 constexpr double kShortestPiece = 0.4;
+/// Two stretches of the loop face each other when their directions differ by more than 135
+/// degrees (the cosine of 45 degrees).
+constexpr double kFacingCosine = 0.7071067811865476;
 
 Vec3 toArray(const openvdb::math::Vec3d& p) {
   return {p[0], p[1], p[2]};
 }
-
-/// A node on the loop: its arc length, position and role.
-struct LoopNode {
-  double param = 0.0;
-  Vec3 point{};
-  PointRole role = PointRole::Boundary;
-};
 
 /// The loop segment holding arc length v (in [0, length)).
 std::size_t segmentAt(const PolylineParam& loop, double v) {
@@ -42,15 +39,23 @@ std::size_t segmentAt(const PolylineParam& loop, double v) {
   return lo;
 }
 
+/// The unit direction of the loop's segment holding arc length v.
+openvdb::math::Vec3d tangentAt(const PolylineParam& loop, double v) {
+  const std::size_t s = segmentAt(loop, std::fmod(v, loop.length()));
+  openvdb::math::Vec3d d = loop.point((s + 1) % loop.pointCount()) - loop.point(s);
+  return d.length() > 0.0 ? d / d.length() : d;
+}
+
 /// The arc lengths in [c0, c1] (c1 may pass the length once) of the loop's closest points there
-/// to each of `sources` within `reach` of it, ascending.
+/// to each of `sources` within `reach` of it where the loop runs against the source's stretch (by
+/// more than 135 degrees: the sides of a strip face each other), ascending.
 std::vector<double> facingParams(const PolylineParam& loop, double c0, double c1,
-                                 const std::vector<Vec3>& sources, double reach) {
+                                 const std::vector<LoopNode>& sources, double reach) {
   const double length = loop.length();
   const std::size_t m = loop.pointCount();
   std::vector<double> params;
-  for (const Vec3& source : sources) {
-    const openvdb::math::Vec3d p(source[0], source[1], source[2]);
+  for (const LoopNode& source : sources) {
+    const openvdb::math::Vec3d p(source.point[0], source.point[1], source.point[2]);
     double best = reach, bestParam = -1.0;
     // The segments overlapping [c0, c1], with their arc lengths unwrapped past c0.
     for (std::size_t step = 0, s = segmentAt(loop, std::fmod(c0, length)); step <= m;
@@ -65,7 +70,9 @@ std::vector<double> facingParams(const PolylineParam& loop, double c0, double c1
       const double d = (loop.pointAt(t) - p).length();
       if (d < best) best = d, bestParam = t;
     }
-    if (bestParam > c0 && bestParam < c1) params.push_back(bestParam);
+    if (bestParam > c0 && bestParam < c1 &&
+        tangentAt(loop, bestParam).dot(tangentAt(loop, source.param)) < -kFacingCosine)
+      params.push_back(bestParam);
   }
   std::sort(params.begin(), params.end());
   return params;
@@ -132,9 +139,9 @@ std::vector<LoopNode> loopNodes(const std::vector<Vec3>& points, const std::vect
   for (std::size_t j = 0; j < anchors.size(); ++j) {
     if (!free(anchors, j)) continue;
     const double c0 = anchors[j].param, c1 = gapEnd(anchors, j);
-    std::vector<Vec3> placed;
+    std::vector<LoopNode> placed;
     for (const LoopNode& node : nodes)  // a corner across (a strip's tapered end) is no row
-      if (node.role != PointRole::Corner) placed.push_back(node.point);
+      if (node.role != PointRole::Corner) placed.push_back(node);
     std::vector<double> breaks{c0};
     for (const double v : facingParams(loop, c0, c1, placed, reach))
       if (v - breaks.back() >= kShortestPiece * spacing && c1 - v >= kShortestPiece * spacing)
@@ -182,7 +189,16 @@ bool chordOnSurface(const Vec3& a, const Vec3& b, const ReferenceSurface& refere
   return true;
 }
 
-/// The mesh of one patch from the nodes of its loop (see narrow_sheet.h).
+/// The surface normal of the face of `surface` closest to p.
+Vec3 normalAt(const QuadMesh& surface, const ReferenceSurface& reference, const Vec3& p) {
+  const auto& face = surface.faces[reference.closestPoint(p).face];
+  const bool triangle = cornerCount(face) == 3;
+  return elementNormal(surface.points[face[0]], surface.points[face[1]], surface.points[face[2]],
+                       surface.points[face[triangle ? 2 : 3]], triangle);
+}
+
+/// The mesh of one patch from the nodes of its loop (see narrow_sheet.h): a grid where the patch
+/// is four-sided (mapped_patch.h), else one row across its boundary polygon (polygon_quads.h).
 QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& corner,
                   const QuadMesh& surface, const ReferenceSurface& reference,
                   const JunctionNodes& junctions, const NarrowSheetSettings& settings) {
@@ -190,15 +206,25 @@ QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& 
                                                 settings.tolerance, settings.maxChord);
   QuadMesh mesh;
   mesh.curves.push_back({loopPoints, true, PointRole::Boundary});
+  const auto surfaceNormal = [&](const Vec3& p) { return normalAt(surface, reference, p); };
+  if (const auto grid = mappedPatch(PolylineParam(loopPoints, true), nodes, reference,
+                                    surfaceNormal, settings.tolerance)) {
+    for (const LoopNode& node : grid->loop) {
+      mesh.points.push_back(node.point);
+      mesh.constraints.push_back({node.role, 0});
+    }
+    for (const Vec3& p : grid->inner) {
+      mesh.points.push_back(p);
+      mesh.constraints.push_back({});
+    }
+    for (const auto& quad : grid->quads) mesh.faces.push_back({quad[0], quad[1], quad[2], quad[3]});
+    return mesh;
+  }
   std::vector<Vec3> normals;
   for (const LoopNode& node : nodes) {
     mesh.points.push_back(node.point);
     mesh.constraints.push_back({node.role, 0});
-    const auto& face = surface.faces[reference.closestPoint(node.point).face];
-    const bool triangle = cornerCount(face) == 3;
-    normals.push_back(elementNormal(surface.points[face[0]], surface.points[face[1]],
-                                    surface.points[face[2]], surface.points[face[triangle ? 2 : 3]],
-                                    triangle));
+    normals.push_back(surfaceNormal(node.point));
   }
   const std::vector<PolygonFace> faces =
       polygonQuads(mesh.points, normals, settings.maxChord, [&](std::size_t i, std::size_t j) {

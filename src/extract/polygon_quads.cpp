@@ -44,8 +44,15 @@ double triangleCost(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& up)
   return quality > 1e-9 ? 1.0 / quality : kInfinite;
 }
 
-/// True when quad a-b-c-d is convex, no corner flatter than kFlattestQuadCornerDeg, and faces
-/// along `up`.
+/// One triangle of the triangulation: corners i < k < j (oriented i, k, j), and the triangles on
+/// its chords i-k and k-j (kNone on a polygon edge).
+struct Triangle {
+  std::uint32_t i, k, j;
+  std::uint32_t left = kNone, right = kNone;
+};
+
+}  // namespace
+
 bool convexQuad(const std::array<Vec3, 4>& q, const Vec3& up) {
   const Vec3 normal = cross(q[2] - q[0], q[3] - q[1]);
   if (!(dot(normal, up) > 0.0)) return false;
@@ -57,15 +64,6 @@ bool convexQuad(const std::array<Vec3, 4>& q, const Vec3& up) {
   }
   return true;
 }
-
-/// One triangle of the triangulation: corners i < k < j (oriented i, k, j), and the triangles on
-/// its chords i-k and k-j (kNone on a polygon edge).
-struct Triangle {
-  std::uint32_t i, k, j;
-  std::uint32_t left = kNone, right = kNone;
-};
-
-}  // namespace
 
 std::vector<PolygonFace> polygonQuads(const std::vector<Vec3>& corners,
                                       const std::vector<Vec3>& normals, double maxChord,

@@ -23,6 +23,10 @@ using ChordTest = std::function<bool(std::size_t i, std::size_t j)>;
 /// Faces of polygonQuads: corner indices; a triangle has [3] == UINT32_MAX.
 using PolygonFace = std::array<std::uint32_t, 4>;
 
+/// True when quad q is convex (every corner turning the way of its diagonals' normal), no corner
+/// flatter than 170 degrees, and its normal agrees with `up`.
+bool convexQuad(const std::array<std::array<double, 3>, 4>& q, const std::array<double, 3>& up);
+
 /// Meshes a closed polygon with quads and, where no quad fits, triangles, all of its corners and
 /// no others (see the top of the file).
 /// @param corners  the polygon's corners in order, at least 3; faces are oriented like this order

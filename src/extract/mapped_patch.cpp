@@ -1,0 +1,154 @@
+// A structured grid over a four-sided patch (see mapped_patch.h).
+#include "extract/mapped_patch.h"
+
+#include <cmath>
+
+#include "extract/polygon_quads.h"
+#include "geometry/vec3.h"
+
+namespace voxremesh::extract {
+
+using namespace geom;  // NOLINT: the vector operators
+
+namespace {
+
+/// The loop turns by more than this (degrees) at a corner of a mapped patch.
+constexpr double kMappedCornerDeg = 45.0;
+
+Vec3 toArray(const openvdb::math::Vec3d& p) {
+  return {p[0], p[1], p[2]};
+}
+
+/// The indices of the nodes where the loop of nodes turns by more than kMappedCornerDeg.
+std::vector<std::size_t> turningNodes(const std::vector<LoopNode>& nodes) {
+  std::vector<std::size_t> corners;
+  const std::size_t n = nodes.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3& p = nodes[i].point;
+    const Vec3 in = p - nodes[(i + n - 1) % n].point, out = nodes[(i + 1) % n].point - p;
+    if (norm(in) > 0.0 && norm(out) > 0.0 && angleDeg(in, out) > kMappedCornerDeg)
+      corners.push_back(i);
+  }
+  return corners;
+}
+
+/// One side of the patch: its nodes from one corner to the next, both included.
+using Side = std::vector<LoopNode>;
+
+/// True when no inner node of the side is prescribed (all have role Boundary).
+bool movable(const Side& side) {
+  for (std::size_t k = 1; k + 1 < side.size(); ++k)
+    if (side[k].role != PointRole::Boundary) return false;
+  return true;
+}
+
+/// The side spaced again evenly along the loop in `pieces` pieces.
+Side respaced(const PolylineParam& loop, const Side& side, std::size_t pieces) {
+  const double length = loop.length();
+  double first = side.front().param, last = side.back().param;
+  if (last <= first) last += length;
+  Side out{side.front()};
+  for (std::size_t k = 1; k < pieces; ++k) {
+    const double v = std::fmod(first + (last - first) * double(k) / double(pieces), length);
+    out.push_back({v, toArray(loop.pointAt(v)), PointRole::Boundary});
+  }
+  out.push_back(side.back());
+  return out;
+}
+
+/// Matches the piece counts of opposite sides a and b by spacing a movable one again.
+bool matchCounts(const PolylineParam& loop, Side& a, Side& b) {
+  if (a.size() == b.size()) return true;
+  if (movable(b)) {
+    b = respaced(loop, b, a.size() - 1);
+    return true;
+  }
+  if (movable(a)) {
+    a = respaced(loop, a, b.size() - 1);
+    return true;
+  }
+  return false;
+}
+
+/// Arc length fractions along a row of points.
+std::vector<double> fractions(const std::vector<Vec3>& row) {
+  std::vector<double> f(row.size(), 0.0);
+  for (std::size_t k = 1; k < row.size(); ++k) f[k] = f[k - 1] + distance(row[k - 1], row[k]);
+  for (double& x : f) x = f.back() > 0.0 ? x / f.back() : 0.0;
+  return f;
+}
+
+}  // namespace
+
+std::optional<MappedPatch> mappedPatch(const PolylineParam& loop,
+                                       const std::vector<LoopNode>& nodes,
+                                       const ReferenceSurface& reference, const NormalAt& normalAt,
+                                       double tolerance) {
+  if (nodes.size() < 4) return std::nullopt;
+  const std::vector<std::size_t> corners = turningNodes(nodes);
+  if (corners.size() != 4) return std::nullopt;
+  std::array<Side, 4> sides;
+  for (std::size_t k = 0; k < 4; ++k)
+    for (std::size_t i = corners[k];; i = (i + 1) % nodes.size()) {
+      sides[k].push_back(nodes[i]);
+      if (i == corners[(k + 1) % 4]) break;
+    }
+  if (!matchCounts(loop, sides[0], sides[2]) || !matchCounts(loop, sides[1], sides[3]))
+    return std::nullopt;
+  const std::size_t n1 = sides[0].size() - 1, n2 = sides[1].size() - 1;
+
+  MappedPatch patch;
+  for (const Side& side : sides) patch.loop.insert(patch.loop.end(), side.begin(), side.end() - 1);
+  const std::size_t loopCount = patch.loop.size();
+  // Grid point (i, j): bottom row sides[0], right column sides[1], top row sides[2] reversed,
+  // left column sides[3] reversed; inner points after the loop's.
+  auto index = [&](std::size_t i, std::size_t j) -> std::uint32_t {
+    if (j == 0) return std::uint32_t(i);
+    if (i == n1) return std::uint32_t(n1 + j);
+    if (j == n2) return std::uint32_t(n1 + n2 + (n1 - i));
+    if (i == 0) return std::uint32_t((2 * n1 + n2 + (n2 - j)) % loopCount);
+    return std::uint32_t(loopCount + (j - 1) * (n1 - 1) + (i - 1));
+  };
+  std::vector<Vec3> bottom, top, left, right;
+  for (std::size_t i = 0; i <= n1; ++i) {
+    bottom.push_back(patch.loop[index(i, 0)].point);
+    top.push_back(patch.loop[index(i, n2)].point);
+  }
+  for (std::size_t j = 0; j <= n2; ++j) {
+    left.push_back(patch.loop[index(0, j)].point);
+    right.push_back(patch.loop[index(n1, j)].point);
+  }
+  const std::vector<double> uBottom = fractions(bottom), uTop = fractions(top);
+  const std::vector<double> vLeft = fractions(left), vRight = fractions(right);
+  for (std::size_t j = 1; j < n2; ++j) {
+    for (std::size_t i = 1; i < n1; ++i) {
+      const double vMean = 0.5 * (vLeft[j] + vRight[j]), uMean = 0.5 * (uBottom[i] + uTop[i]);
+      const double u = uBottom[i] * (1 - vMean) + uTop[i] * vMean;
+      const double v = vLeft[j] * (1 - uMean) + vRight[j] * uMean;
+      const Vec3 p = bottom[i] * (1 - v) + top[i] * v + left[j] * (1 - u) + right[j] * u -
+                     (bottom[0] * ((1 - u) * (1 - v)) + bottom[n1] * (u * (1 - v)) +
+                      top[0] * ((1 - u) * v) + top[n1] * (u * v));
+      patch.inner.push_back(reference.closestPoint(p).point);
+    }
+  }
+  auto point = [&](std::uint32_t k) -> const Vec3& {
+    return k < loopCount ? patch.loop[k].point : patch.inner[k - loopCount];
+  };
+  for (std::size_t j = 0; j < n2; ++j) {
+    for (std::size_t i = 0; i < n1; ++i) {
+      const std::array<std::uint32_t, 4> quad{index(i, j), index(i + 1, j), index(i + 1, j + 1),
+                                              index(i, j + 1)};
+      const std::array<Vec3, 4> q{point(quad[0]), point(quad[1]), point(quad[2]), point(quad[3])};
+      const Vec3 centre = (q[0] + q[1] + q[2] + q[3]) * 0.25;
+      if (!convexQuad(q, normalAt(centre))) return std::nullopt;
+      if (reference.closestPoint(centre).distance > tolerance) return std::nullopt;
+      for (std::size_t c = 0; c < 4; ++c)
+        if (reference.closestPoint((q[c] + q[(c + 1) % 4]) * 0.5).distance > tolerance)
+          return std::nullopt;
+      patch.quads.push_back(quad);
+    }
+  }
+  return patch;
+}
+
+}  // namespace voxremesh::extract

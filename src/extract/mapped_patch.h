@@ -1,0 +1,54 @@
+// A structured grid of quads over a four-sided patch of a narrow sheet (narrow_sheet.h): where the
+// patch's boundary turns sharply at exactly four nodes, the patch is mapped onto a rectangle and
+// meshed as rows and columns of quads, with nodes inside where the patch is more than one element
+// wide (transfinite interpolation between its four sides, laid on the surface).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "extract/polyline_param.h"
+#include "voxremesh/quad_mesh.h"
+#include "voxremesh/reference_surface.h"
+
+namespace voxremesh::extract {
+
+/// A node on a patch's loop: its arc length, position and role (Corner, Junction or Boundary).
+struct LoopNode {
+  double param = 0.0;
+  std::array<double, 3> point{};
+  PointRole role = PointRole::Boundary;
+};
+
+/// The grid of mappedPatch: the loop's nodes (a side may have been spaced again), the nodes
+/// inside, and the quads (indices: loop nodes first, then inner nodes), oriented like the loop.
+struct MappedPatch {
+  std::vector<LoopNode> loop;
+  std::vector<std::array<double, 3>> inner;
+  std::vector<std::array<std::uint32_t, 4>> quads;
+};
+
+/// The surface normal at a point (need not be unit).
+using NormalAt = std::function<std::array<double, 3>(const std::array<double, 3>&)>;
+
+/// Meshes a patch as a grid when its loop turns by more than 45 degrees at exactly four of its
+/// nodes, and opposite sides have as many pieces, or can get as many: a side whose inner nodes all
+/// have role Boundary is spaced again evenly with the count of the side opposite (prescribed
+/// junction nodes are never moved). Inner nodes are interpolated from the four sides and laid on
+/// the surface.
+/// @param loop       the patch's loop (closed)
+/// @param nodes      the nodes on it, ascending arc length, at least 4
+/// @param reference  the surface the inner nodes are laid on
+/// @param normalAt   the surface normal at a point, which every quad must agree with
+/// @param tolerance  largest distance of a quad's centre and edge midpoints from the surface
+/// @return the grid, or nothing when the patch is not four-sided, opposite counts cannot be
+///         matched, or a quad is not convex or leaves the surface
+std::optional<MappedPatch> mappedPatch(const PolylineParam& loop,
+                                       const std::vector<LoopNode>& nodes,
+                                       const ReferenceSurface& reference, const NormalAt& normalAt,
+                                       double tolerance);
+
+}  // namespace voxremesh::extract
