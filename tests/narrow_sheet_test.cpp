@@ -152,11 +152,29 @@ TEST(NarrowSheet, AFoldAcrossTheStripThatNoChordFollowsIsRefused) {
   EXPECT_NO_THROW(meshStrip(model, 1, 4.0, 2.0));
 }
 
-TEST(NarrowSheet, AnAnnulusIsNoDisk) {
-  // A square ring: one strip around a hole.
+TEST(NarrowSheet, ARingGetsOneRowRoundItsHole) {
+  // A square ring 1 mm wide round a 2 x 2 hole (4 x 4 elements of 1 mm without the middle four),
+  // meshed at 1 mm: quads only, the hole kept, all nodes on the two loops.
   FeModel model = strip(4, 4, 1.0, 1.0);
-  model.shells.erase(model.shells.begin() + 5, model.shells.begin() + 7);  // row 1, i = 1, 2
-  model.shells.erase(model.shells.begin() + 7, model.shells.begin() + 9);  // row 2, i = 1, 2
+  model.shells.erase(model.shells.begin() + 9, model.shells.begin() + 11);  // row 2, i = 1, 2
+  model.shells.erase(model.shells.begin() + 5, model.shells.begin() + 7);   // row 1, i = 1, 2
+  const std::vector<Sheet> sheets = buildSheets(model, 1);
+  ASSERT_EQ(sheets.size(), 1u);
+  const std::vector<extract::SheetPatch> patches = extract::sheetPatches(sheets.front());
+  ASSERT_EQ(patches.size(), 1u);
+  EXPECT_EQ(patches.front().loops.size(), 2u);
+  const QuadMesh mesh = meshStrip(model, 1, 1.0, 0.05);
+  EXPECT_NEAR(area(mesh), 12.0, 1e-9);
+  EXPECT_EQ(triangleCount(mesh), 0u);
+  EXPECT_EQ(topologyCounts(mesh).boundaryLoops, 2u);
+  for (const PointConstraint& constraint : mesh.constraints)
+    EXPECT_NE(constraint.role, PointRole::Free);
+}
+
+TEST(NarrowSheet, ASheetWithTwoHolesIsRefused) {
+  FeModel model = strip(5, 3, 1.0, 1.0);
+  model.shells.erase(model.shells.begin() + 8);  // row 1, i = 3
+  model.shells.erase(model.shells.begin() + 6);  // row 1, i = 1
   const std::vector<Sheet> sheets = buildSheets(model, 1);
   ASSERT_EQ(sheets.size(), 1u);
   EXPECT_THROW(extract::sheetPatches(sheets.front()), extract::NarrowSheetRefusal);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <utility>
 
@@ -46,15 +47,22 @@ openvdb::math::Vec3d tangentAt(const PolylineParam& loop, double v) {
   return d.length() > 0.0 ? d / d.length() : d;
 }
 
+/// A node placed on a loop, which the nodes of stretches facing it line up with: its position and
+/// the direction of its loop there.
+struct FacingSource {
+  Vec3 point{};
+  openvdb::math::Vec3d tangent;
+};
+
 /// The arc lengths in [c0, c1] (c1 may pass the length once) of the loop's closest points there
 /// to each of `sources` within `reach` of it where the loop runs against the source's stretch (by
 /// more than 135 degrees: the sides of a strip face each other), ascending.
 std::vector<double> facingParams(const PolylineParam& loop, double c0, double c1,
-                                 const std::vector<LoopNode>& sources, double reach) {
+                                 const std::vector<FacingSource>& sources, double reach) {
   const double length = loop.length();
   const std::size_t m = loop.pointCount();
   std::vector<double> params;
-  for (const LoopNode& source : sources) {
+  for (const FacingSource& source : sources) {
     const openvdb::math::Vec3d p(source.point[0], source.point[1], source.point[2]);
     double best = reach, bestParam = -1.0;
     // The segments overlapping [c0, c1], with their arc lengths unwrapped past c0.
@@ -71,17 +79,18 @@ std::vector<double> facingParams(const PolylineParam& loop, double c0, double c1
       if (d < best) best = d, bestParam = t;
     }
     if (bestParam > c0 && bestParam < c1 &&
-        tangentAt(loop, bestParam).dot(tangentAt(loop, source.param)) < -kFacingCosine)
+        tangentAt(loop, bestParam).dot(source.tangent) < -kFacingCosine)
       params.push_back(bestParam);
   }
   std::sort(params.begin(), params.end());
   return params;
 }
 
-/// The nodes on the loop (see narrow_sheet.h), ascending arc length.
+/// The nodes on the loop (see narrow_sheet.h), ascending arc length; free stretches also line up
+/// with the nodes of `across` (those of another loop of the patch).
 std::vector<LoopNode> loopNodes(const std::vector<Vec3>& points, const std::vector<char>& corner,
                                 const JunctionNodes& junctions, double spacing, double tolerance,
-                                double reach) {
+                                double reach, const std::vector<FacingSource>& across) {
   const PolylineParam loop(points, true);
   const std::size_t m = points.size();
   const double length = loop.length();
@@ -139,9 +148,10 @@ std::vector<LoopNode> loopNodes(const std::vector<Vec3>& points, const std::vect
   for (std::size_t j = 0; j < anchors.size(); ++j) {
     if (!free(anchors, j)) continue;
     const double c0 = anchors[j].param, c1 = gapEnd(anchors, j);
-    std::vector<LoopNode> placed;
+    std::vector<FacingSource> placed = across;
     for (const LoopNode& node : nodes)  // a corner across (a strip's tapered end) is no row
-      if (node.role != PointRole::Corner) placed.push_back(node);
+      if (node.role != PointRole::Corner)
+        placed.push_back({node.point, tangentAt(loop, node.param)});
     std::vector<double> breaks{c0};
     for (const double v : facingParams(loop, c0, c1, placed, reach))
       if (v - breaks.back() >= kShortestPiece * spacing && c1 - v >= kShortestPiece * spacing)
@@ -203,7 +213,7 @@ QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& 
                   const QuadMesh& surface, const ReferenceSurface& reference,
                   const JunctionNodes& junctions, const NarrowSheetSettings& settings) {
   const std::vector<LoopNode> nodes = loopNodes(loopPoints, corner, junctions, settings.spacing,
-                                                settings.tolerance, settings.maxChord);
+                                                settings.tolerance, settings.maxChord, {});
   QuadMesh mesh;
   mesh.curves.push_back({loopPoints, true, PointRole::Boundary});
   const auto surfaceNormal = [&](const Vec3& p) { return normalAt(surface, reference, p); };
@@ -239,6 +249,72 @@ QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& 
   return mesh;
 }
 
+/// The mesh of a ring patch (two loops, a band or a tube): the nodes of both loops, the second's
+/// lined up with the first's, joined by a bridge between their closest nodes into one polygon
+/// (each loop run once, the bridge there and back), which polygonQuads meshes; the bridge's two
+/// visits are one edge again afterwards.
+QuadMesh meshRing(const std::array<std::vector<Vec3>, 2>& loops,
+                  const std::array<std::vector<char>, 2>& corners, const QuadMesh& surface,
+                  const ReferenceSurface& reference, const JunctionNodes& junctions,
+                  const NarrowSheetSettings& settings) {
+  const std::vector<LoopNode> first = loopNodes(loops[0], corners[0], junctions, settings.spacing,
+                                                settings.tolerance, settings.maxChord, {});
+  std::vector<FacingSource> across;
+  const PolylineParam firstLoop(loops[0], true);
+  for (const LoopNode& node : first)
+    if (node.role != PointRole::Corner)
+      across.push_back({node.point, tangentAt(firstLoop, node.param)});
+  const std::vector<LoopNode> second = loopNodes(loops[1], corners[1], junctions, settings.spacing,
+                                                 settings.tolerance, settings.maxChord, across);
+  // The bridge: the closest pair of nodes whose chord lies on the surface.
+  std::size_t a0 = first.size(), b0 = second.size();
+  double shortest = std::numeric_limits<double>::infinity();
+  for (std::size_t a = 0; a < first.size(); ++a)
+    for (std::size_t b = 0; b < second.size(); ++b) {
+      const double d = distance(first[a].point, second[b].point);
+      if (d < shortest && chordOnSurface(first[a].point, second[b].point, reference,
+                                         settings.spacing, settings.tolerance))
+        shortest = d, a0 = a, b0 = b;
+    }
+  if (a0 == first.size())
+    throw NarrowSheetRefusal("no bridge between its two boundary loops stays on it");
+  QuadMesh mesh;
+  mesh.curves.push_back({loops[0], true, PointRole::Boundary});
+  mesh.curves.push_back({loops[1], true, PointRole::Boundary});
+  // Polygon: the first loop from a0 round to a0 again, then the second from b0 round to b0.
+  std::vector<std::uint32_t> pointOf;  // polygon corner -> mesh point
+  std::vector<Vec3> polygon, normals;
+  auto add = [&](const std::vector<LoopNode>& nodes, std::size_t start, std::uint32_t curve) {
+    const std::uint32_t base = std::uint32_t(mesh.points.size());
+    for (const LoopNode& node : nodes) {
+      mesh.points.push_back(node.point);
+      mesh.constraints.push_back({node.role, curve});
+    }
+    for (std::size_t k = 0; k <= nodes.size(); ++k) {
+      const std::size_t i = (start + k) % nodes.size();
+      pointOf.push_back(base + std::uint32_t(i));
+      polygon.push_back(nodes[i].point);
+      normals.push_back(normalAt(surface, reference, nodes[i].point));
+    }
+  };
+  add(first, a0, 0);
+  add(second, b0, 1);
+  const std::vector<PolygonFace> faces =
+      polygonQuads(polygon, normals, settings.maxChord, [&](std::size_t i, std::size_t j) {
+        if (pointOf[i] == pointOf[j]) return false;
+        return chordOnSurface(polygon[i], polygon[j], reference, settings.spacing,
+                              settings.tolerance);
+      });
+  if (faces.empty())
+    throw NarrowSheetRefusal("no row of faces across it between its " +
+                             std::to_string(first.size() + second.size()) +
+                             " boundary nodes stays on it");
+  for (const PolygonFace& face : faces)
+    mesh.faces.push_back({pointOf[face[0]], pointOf[face[1]], pointOf[face[2]],
+                          face[3] == UINT32_MAX ? kNoCorner : pointOf[face[3]]});
+  return mesh;
+}
+
 }  // namespace
 
 QuadMesh meshNarrowSheet(const Sheet& sheet, const QuadMesh& surface,
@@ -249,13 +325,17 @@ QuadMesh meshNarrowSheet(const Sheet& sheet, const QuadMesh& surface,
   const std::set<PointIndex> corners(sheet.featurePoints.begin(), sheet.featurePoints.end());
   std::vector<QuadMesh> patchMeshes;
   for (const SheetPatch& patch : sheetPatches(sheet)) {
-    std::vector<Vec3> loopPoints;
-    std::vector<char> corner;
-    for (const PointIndex p : patch.loop) {
-      loopPoints.push_back(sheet.points[p]);
-      corner.push_back(corners.count(p) != 0);
-    }
-    patchMeshes.push_back(meshLoop(loopPoints, corner, surface, reference, junctions, settings));
+    std::array<std::vector<Vec3>, 2> loopPoints;
+    std::array<std::vector<char>, 2> corner;
+    for (std::size_t l = 0; l < patch.loops.size(); ++l)
+      for (const PointIndex p : patch.loops[l]) {
+        loopPoints[l].push_back(sheet.points[p]);
+        corner[l].push_back(corners.count(p) != 0);
+      }
+    patchMeshes.push_back(
+        patch.loops.size() == 1
+            ? meshLoop(loopPoints[0], corner[0], surface, reference, junctions, settings)
+            : meshRing(loopPoints, corner, surface, reference, junctions, settings));
     patchMeshes.back().part = sheet.part;
   }
   return joinAtJunctions(patchMeshes);

@@ -45,8 +45,10 @@ std::set<Edge> innerJunctionEdges(const Sheet& sheet) {
   return cuts;
 }
 
-/// The boundary loop of one patch: its faces' directed edges whose reverse is not in the patch.
-std::vector<PointIndex> patchLoop(const Sheet& sheet, const std::vector<std::size_t>& faces) {
+/// The boundary loops of one patch: its faces' directed edges whose reverse is not in the patch,
+/// chained (each loop from its lowest point, loops by their lowest point).
+std::vector<std::vector<PointIndex>> patchLoops(const Sheet& sheet,
+                                                const std::vector<std::size_t>& faces) {
   std::set<Edge> directed;
   for (const std::size_t f : faces)
     for (int c = 0; c < corners(sheet.faces[f]); ++c)
@@ -59,18 +61,24 @@ std::vector<PointIndex> patchLoop(const Sheet& sheet, const std::vector<std::siz
       throw NarrowSheetRefusal("a patch of it touches itself at a point");
   }
   if (next.empty()) throw NarrowSheetRefusal("a patch of it has no boundary");
-  std::vector<PointIndex> loop{next.begin()->first};
-  for (PointIndex p = next.begin()->second; p != loop.front(); p = next.at(p)) {
-    loop.push_back(p);
-    if (loop.size() > next.size()) break;
+  std::vector<std::vector<PointIndex>> loops;
+  std::set<PointIndex> visited;
+  for (const auto& [start, unused] : next) {
+    if (visited.count(start) != 0) continue;
+    std::vector<PointIndex> loop{start};
+    visited.insert(start);
+    for (PointIndex p = next.at(start); p != start; p = next.at(p)) {
+      loop.push_back(p);
+      visited.insert(p);
+      if (loop.size() > next.size()) throw NarrowSheetRefusal("a patch of it has a broken loop");
+    }
+    loops.push_back(std::move(loop));
   }
-  if (loop.size() != next.size())
-    throw NarrowSheetRefusal("a patch of it has more than one boundary loop");
-  return loop;
+  return loops;
 }
 
-/// Refuses a patch that is not a disk: Euler characteristic V - E + F other than 1.
-void checkDisk(const Sheet& sheet, const std::vector<std::size_t>& faces) {
+/// The Euler characteristic V - E + F of a patch.
+long eulerCharacteristic(const Sheet& sheet, const std::vector<std::size_t>& faces) {
   std::set<Edge> edges;
   std::set<PointIndex> points;
   for (const std::size_t f : faces) {
@@ -81,10 +89,7 @@ void checkDisk(const Sheet& sheet, const std::vector<std::size_t>& faces) {
           edgeKey(sheet.faces[f][std::size_t(c)], sheet.faces[f][std::size_t((c + 1) % n)]));
     }
   }
-  const long euler = long(points.size()) - long(edges.size()) + long(faces.size());
-  if (euler != 1)
-    throw NarrowSheetRefusal("it is not a disk (Euler characteristic " + std::to_string(euler) +
-                             ")");
+  return long(points.size()) - long(edges.size()) + long(faces.size());
 }
 
 }  // namespace
@@ -116,8 +121,12 @@ std::vector<SheetPatch> sheetPatches(const Sheet& sheet) {
     patches[it->second].faces.push_back(f);
   }
   for (SheetPatch& patch : patches) {
-    checkDisk(sheet, patch.faces);
-    patch.loop = patchLoop(sheet, patch.faces);
+    const long euler = eulerCharacteristic(sheet, patch.faces);
+    patch.loops = patchLoops(sheet, patch.faces);
+    if (!(euler == 1 && patch.loops.size() == 1) && !(euler == 0 && patch.loops.size() == 2))
+      throw NarrowSheetRefusal("it is neither a disk nor a ring (Euler characteristic " +
+                               std::to_string(euler) + ", " + std::to_string(patch.loops.size()) +
+                               " boundary loops)");
   }
   return patches;
 }

@@ -10,11 +10,11 @@
 
 namespace voxremesh::extract {
 
-/// A patch: its faces (indices into Sheet::faces) and its one boundary loop (sheet points,
-/// running with the patch on its left).
+/// A patch: its faces (indices into Sheet::faces) and its boundary loops (sheet points, running
+/// with the patch on their left): one for a disk, two for a ring (a band or a tube).
 struct SheetPatch {
   std::vector<std::size_t> faces;
-  std::vector<PointIndex> loop;
+  std::vector<std::vector<PointIndex>> loops;
 };
 
 /// Cuts a sheet into patches along its inner junction edges: junction-curve edges with a face on
@@ -22,8 +22,9 @@ struct SheetPatch {
 /// strip whose two sides meet the same part is no line of its own).
 /// @param sheet  a sheet (buildSheets): manifold, consistently oriented
 /// @return the patches in the order of their first face
-/// Throws NarrowSheetRefusal when a patch is not a disk with one boundary loop (Euler
-/// characteristic 1), or a junction curve ends inside a patch.
+/// Throws NarrowSheetRefusal when a patch is neither a disk (one boundary loop, Euler
+/// characteristic 1) nor a ring (two loops, Euler characteristic 0), or a junction curve ends
+/// inside a patch.
 std::vector<SheetPatch> sheetPatches(const Sheet& sheet);
 
 }  // namespace voxremesh::extract
