@@ -161,6 +161,40 @@ TEST(NastranRead, SmallFieldDeckWithHeader) {
   EXPECT_TRUE(warnings.empty()) << warnings.front();
 }
 
+TEST(NastranRead, GridsInLocalSystemsAreReadIntoTheBasicSystem) {
+  // System 5: rectangular, origin (10, 0, 0), z along basic x, x along basic y (A, B, C given in
+  // system 6). System 6: rectangular, shifted by (0, 0, 1) from basic. System 7: cylindrical
+  // about basic z; system 8: spherical about basic z. The GRIDs come before the systems.
+  const fs::path dir = test::scratchDir("nastran-cp");
+  const std::string text =
+      "BEGIN BULK\n" + small({"GRID", "1", "5", "1.", "2.", "3."}) +
+      small({"GRID", "2", "7", "2.", "90.", "5."}) + small({"GRID", "3", "8", "2.", "90.", "0."}) +
+      small({"GRID", "4", "", "1.", "1.", "1.", "5"}) +
+      small({"CORD2R", "5", "6", "10.", "0.", "-1.", "11.", "0.", "-1.", "+"}) +
+      small({"+", "10.", "1.", "-1."}) +
+      small({"CORD2R", "6", "", "0.", "0.", "1.", "0.", "0.", "2.", "+"}) +
+      small({"+", "1.", "0.", "1."}) + large({"CORD2C*", "7", "0", "0.", "0.", "+C7"}) +
+      large({"*C7", "0.", "0.", "0.", "1.", "+C8"}) + large({"*C8", "1.", "0.", "0."}) +
+      small({"CORD2S", "8", "", "0.", "0.", "0.", "0.", "0.", "1.", "+"}) +
+      small({"+", "1.", "0.", "0."}) + small({"CQUAD4", "1", "1", "1", "2", "3", "4"}) +
+      "ENDDATA\n";
+  const FeModel model = read(put(dir / "cp.bdf", text));
+  const auto near = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(a[std::size_t(k)] - b[std::size_t(k)]) > 1e-12) return false;
+    return true;
+  };
+  // System 5 in basic: origin (10, 0, 0), z = basic x, x = basic y, y = basic z.
+  EXPECT_TRUE(near(node(model, 1).xyz, {13.0, 1.0, 2.0}));
+  EXPECT_TRUE(near(node(model, 2).xyz, {0.0, 2.0, 5.0}));  // r 2, theta 90, z 5
+  EXPECT_TRUE(near(node(model, 3).xyz, {2.0, 0.0, 0.0}));  // r 2, theta 90 (from z), phi 0
+  EXPECT_TRUE(near(node(model, 4).xyz, {1.0, 1.0, 1.0}));  // CD 5 is no location system
+  EXPECT_EQ(model.nodeExtras.at(4).nastranCd, 5);
+  // The systems stay in the deck, written back as they were.
+  EXPECT_NE(verbatim(model).find("CORD2C*"), std::string::npos);
+  EXPECT_NE(verbatim(model).find(small({"+", "10.", "1.", "-1."})), std::string::npos);
+}
+
 TEST(NastranRead, LargeFieldWithContinuations) {
   const fs::path dir = test::scratchDir("nastran-large");
   const std::string deck =
@@ -652,7 +686,22 @@ TEST(NastranErrors, EachNamesFileAndLine) {
   check("cquad8.bdf", grids + small({"CQUAD8", "1", "1", "1", "2", "3", "4", "5", "6"}), 4,
         "CQUAD8 elements");
   check("cp.bdf", grids + "$ local system\n" + small({"GRID", "9", "5", "0.", "0.", "0."}), 5,
-        "local coordinate system CP = 5");
+        "GRID 9 is given in coordinate system CP = 5, which the deck does not define");
+  const std::string inFive = small({"GRID", "9", "5", "0.", "0.", "0."});
+  check("rid.bdf",
+        grids + inFive + small({"CORD2R", "5", "6", "0.", "0.", "0.", "0.", "0.", "1.", "+"}) +
+            small({"+", "1.", "0.", "0."}),
+        5, "CORD2R 5 refers to coordinate system 6, which the deck does not define");
+  check("rid-cycle.bdf",
+        grids + inFive + small({"CORD2R", "5", "6", "0.", "0.", "0.", "0.", "0.", "1.", "+"}) +
+            small({"+", "1.", "0.", "0."}) +
+            small({"CORD2R", "6", "5", "0.", "0.", "0.", "0.", "0.", "1.", "+"}) +
+            small({"+", "1.", "0.", "0."}),
+        5, "returns to itself");
+  check("axes.bdf",
+        grids + inFive + small({"CORD2C", "5", "", "0.", "0.", "0.", "0.", "0.", "1.", "+"}) +
+            small({"+", "0.", "0.", "2."}),
+        5, "CORD2C 5: its points A, B and C do not define axes");
   check("grdset.bdf", small({"GRDSET", "", "4"}) + grids, 1, "GRDSET sets the default CP = 4");
   check("tflag.bdf",
         grids + small({"CTRIA3", "1", "1", "1", "2", "3", "", "", "", "+"}) +

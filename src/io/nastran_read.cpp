@@ -7,8 +7,10 @@
 // parts; part names come from HyperMesh ($HMNAME PROP) and ANSA ($ANSA_NAME_COMMENT, $ANSA_NAME)
 // comments.
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -17,6 +19,7 @@
 #include "io/formats.h"
 #include "io/model_checks.h"
 #include "io/nastran_cards.h"
+#include "io/nastran_coords.h"
 #include "io/text_scan.h"
 #include "voxremesh/errors.h"
 
@@ -29,15 +32,16 @@ using nastran::CardFields;
 
 /// What a card is to the reader.
 enum class CardKind {
-  Other,       ///< kept verbatim
-  Grid,        ///< GRID
-  Shell,       ///< CQUAD4, CTRIA3, CQUADR, CTRIAR
-  Property,    ///< PSHELL, PCOMP, PCOMPG, PCOMPP: verbatim, and a part
-  GridSet,     ///< GRDSET: verbatim; its CP applies to GRIDs with CP blank
-  Include,     ///< INCLUDE 'file'
-  EndData,     ///< ENDDATA
-  Begin,       ///< BEGIN SUPER=... (partitioned bulk data)
-  Unsupported  ///< shells we cannot represent (CQUAD8, CTRIA6, CQUAD)
+  Other,        ///< kept verbatim
+  Grid,         ///< GRID
+  Shell,        ///< CQUAD4, CTRIA3, CQUADR, CTRIAR
+  Property,     ///< PSHELL, PCOMP, PCOMPG, PCOMPP: verbatim, and a part
+  GridSet,      ///< GRDSET: verbatim; its CP applies to GRIDs with CP blank
+  CoordSystem,  ///< CORD2R, CORD2C, CORD2S: verbatim, and read for GRIDs given in them (CP)
+  Include,      ///< INCLUDE 'file'
+  EndData,      ///< ENDDATA
+  Begin,        ///< BEGIN SUPER=... (partitioned bulk data)
+  Unsupported   ///< shells we cannot represent (CQUAD8, CTRIA6, CQUAD)
 };
 
 /// A shell card: its name, node count and whether it is of the CQUADR/CTRIAR family.
@@ -68,6 +72,8 @@ CardKind classify(std::string_view name, const ShellCard*& shell) {
         }
       if (iequals(name, "CQUAD8") || iequals(name, "CTRIA6") || iequals(name, "CQUAD"))
         return CardKind::Unsupported;
+      if (iequals(name, "CORD2R") || iequals(name, "CORD2C") || iequals(name, "CORD2S"))
+        return CardKind::CoordSystem;
       break;
     case 'P':
     case 'p':
@@ -307,6 +313,7 @@ class Reader {
       if (nastran::isContinuationLine(line)) {
         if (open_ != CardKind::Other) {
           card_.addContinuation(cursor.lineNumber(), line);
+          if (open_ == CardKind::CoordSystem) blocks_.verbatim(cursor.rawLine());
         } else {
           blocks_.verbatim(cursor.rawLine());
         }
@@ -340,6 +347,11 @@ class Reader {
         openShell_ = shell;
         card_.start(&file.name, cursor.lineNumber(), line);
         return;
+      case CardKind::CoordSystem:
+        open_ = kind;
+        coordType_ = char(std::toupper(static_cast<unsigned char>(name.name[5])));
+        card_.start(&file.name, cursor.lineNumber(), line);
+        break;
       case CardKind::Property:
         addProperty(cursor, file, name.name);
         break;
@@ -381,6 +393,8 @@ class Reader {
       readGrid(file);
     } else if (open_ == CardKind::Shell) {
       readShell(file);
+    } else if (open_ == CardKind::CoordSystem) {
+      readCoordSystem(file);
     }
     open_ = CardKind::Other;
   }
@@ -466,11 +480,10 @@ class Reader {
     setLabelId(id);
     requireNoPendingContinuation(file, "X3, CD, PS, SEID");
     const std::int64_t cp = intField(file, 1, "CP (coordinate system)", false);
+    if (cp < 0) fieldError(file, 1, "negative CP in " + label());
     if (cp != 0)
-      fieldError(file, 1,
-                 label() + " is given in local coordinate system CP = " + std::to_string(cp) +
-                     ", which voxremesh cannot transform: export the deck with GRID coordinates "
-                     "in the basic system (CP blank or 0)");
+      localGrids_.push_back({model_.nodes.size(), Id(cp), file.name, card_.lineOf(1),
+                             std::string(card_.lineTextOf(1))});
     if (card_[1].empty() && !blankCpGrid_) {
       blankCpGrid_ = true;
       blankCpFile_ = file.name;
@@ -490,6 +503,51 @@ class Reader {
       model_.nodeExtras[id] = extras;
     model_.nodes.push_back(node);
     sources_.addNode(file.index, card_.firstLine());
+  }
+
+  /// CORD2R/CORD2C/CORD2S CID RID A1 A2 A3 B1 B2 B3 C1 C2 C3 (kept verbatim as well).
+  void readCoordSystem(const FileContext& file) {
+    setLabel(coordType_ == 'C' ? "CORD2C" : coordType_ == 'S' ? "CORD2S" : "CORD2R");
+    const Id id = intField(file, 0, "coordinate system ID (CID)", true);
+    setLabelId(id);
+    if (id <= 0) fieldError(file, 0, label() + ": its ID must be positive");
+    requireNoPendingContinuation(file, "C1, C2, C3");
+    nastran::CoordCard card;
+    card.type = coordType_;
+    card.rid = intField(file, 1, "reference system (RID)", false);
+    if (card.rid < 0) fieldError(file, 1, label() + ": negative RID");
+    static const char* const kPoints[] = {"A1", "A2", "A3", "B1", "B2", "B3", "C1", "C2", "C3"};
+    for (std::size_t k = 0; k < 9; ++k) {
+      std::array<double, 3>& point = k < 3 ? card.a : k < 6 ? card.b : card.c;
+      point[k % 3] = realField(file, 2 + k, kPoints[k]);
+    }
+    requireBlank(file, 11, "CID RID A1 A2 A3 B1 B2 B3 C1 C2 C3");
+    card.file = file.name;
+    card.line = card_.firstLine();
+    card.text = std::string(card_.firstText());
+    const auto [it, inserted] = coordCards_.emplace(id, card);
+    if (!inserted)
+      fieldError(file, 0,
+                 "duplicate coordinate system ID " + std::to_string(id) + " (first defined at " +
+                     it->second.file + ":" + std::to_string(it->second.line) + ")");
+  }
+
+  /// Moves the GRIDs given in local systems into the basic system.
+  void transformLocalGrids() {
+    if (localGrids_.empty()) return;
+    const std::map<Id, nastran::CoordFrame> frames = nastran::resolveCoordFrames(coordCards_);
+    for (const LocalGrid& grid : localGrids_) {
+      const auto frame = frames.find(grid.cp);
+      if (frame == frames.end())
+        throw InputError(grid.file, grid.line,
+                         "GRID " + std::to_string(model_.nodes[grid.node].id) +
+                             " is given in coordinate system CP = " + std::to_string(grid.cp) +
+                             ", which the deck does not define by a CORD2R, CORD2C or CORD2S "
+                             "card",
+                         grid.text);
+      Node& node = model_.nodes[grid.node];
+      node.xyz = nastran::toBasic(frame->second, node.xyz);
+    }
   }
 
   void readShell(const FileContext& file) {
@@ -664,6 +722,7 @@ class Reader {
                            "), a local coordinate system voxremesh cannot transform: export the "
                            "deck with GRID coordinates in the basic system",
                        gridSetText_);
+    transformLocalGrids();
     // Parts the elements use without a property card.
     const std::vector<Id> missing = addUndefinedParts(model_);
     if (!missing.empty())
@@ -698,6 +757,17 @@ class Reader {
   std::string blankCpFile_;
   std::size_t blankCpLine_ = 0;
   std::int64_t gridSetCp_ = 0;
+  /// A GRID given in a local system, transformed once all systems are read.
+  struct LocalGrid {
+    std::size_t node;  ///< index into model_.nodes
+    Id cp;
+    std::string file;
+    std::size_t line;
+    std::string text;
+  };
+  std::vector<LocalGrid> localGrids_;
+  std::map<Id, nastran::CoordCard> coordCards_;
+  char coordType_ = 'R';
   std::string gridSetFile_;
   std::size_t gridSetLine_ = 0;
   std::string gridSetText_;
