@@ -8,9 +8,11 @@
 //   -> optimisation                     (optimize.h)
 //   -> acceptance, retried at a finer voxel or the part kept (RemeshedPart, PartAcceptance)
 // and then replacePartMeshes (deck_assembly.h) puts the accepted meshes back into the deck in the
-// order of planRemesh. Each sheet of a part is voxelised, extracted and optimised on its own; the
-// sheets' meshes are then joined at their junction nodes (joinAtJunctions). partVolumes builds
-// all sheet volumes of a part at once, for the tools that inspect them.
+// order of planRemesh. Each sheet of a part is voxelised, extracted and optimised on its own (a
+// sheet narrower than RemeshSettings::narrowFeatureVoxels target sizes is meshed from its boundary
+// instead, src/extract/narrow_sheet.h); the sheets' meshes are then joined at their junction
+// nodes (joinAtJunctions). partVolumes builds all sheet volumes of a part at once, for the tools
+// that inspect them.
 #pragma once
 
 #include <cstddef>
@@ -41,8 +43,10 @@ struct RemeshSettings {
   /// by default: each halving quadruples the elements and halves the explicit time step, which a
   /// crash model pays everywhere.
   int retries = 1;
-  /// A sheet narrower than this many voxels (its width 2 x area / boundary length) gets a voxel
-  /// this much smaller than its width, so that the strip, flange or hole is kept.
+  /// A sheet narrower than this many target sizes (its width 2 x area / boundary length) is meshed
+  /// from its boundary with rows of quads along it (src/extract/narrow_sheet.h); where that
+  /// cannot be done, it gets a voxel this much smaller than its width, so that the strip, flange
+  /// or hole is kept.
   double narrowFeatureVoxels = 3.0;
   /// The finest voxel any reduction or retry may reach, as a share of the part's target size.
   /// The distance limit stays 0.25 x the target size; element criteria use the voxel reached.
