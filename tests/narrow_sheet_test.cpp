@@ -43,6 +43,15 @@ FeModel strip(int columns, int rows, double along, double across, int splitRow =
   return model;
 }
 
+/// A strip of 10 x 1 elements 4 mm long and `across` wide whose far side is shifted by `shift`
+/// and scaled by `scale` along x (a trapezoid).
+FeModel taperedStrip(double across, double shift, double scale) {
+  FeModel model = strip(10, 1, 4.0, across);
+  for (Node& node : model.nodes)
+    if (node.xyz[1] > 0.0) node.xyz[0] = shift + node.xyz[0] * scale;
+  return model;
+}
+
 /// Meshes the part's one sheet from its boundary with nodes `spacing` apart.
 QuadMesh meshStrip(const FeModel& model, Id part, double spacing, double tolerance = 0.1,
                    double junctionSpacing = 0.0) {
@@ -106,10 +115,7 @@ TEST(NarrowSheet, AStripGetsOneRowOfQuadsAcrossAtTheSpacing) {
 
 TEST(NarrowSheet, ATaperedEndStillGetsQuadsWhereTheNodesFace) {
   // A trapezoid strip: the ladder's rungs run straight across where the nodes face each other.
-  FeModel model = strip(10, 1, 4.0, 3.0);
-  for (Node& node : model.nodes)
-    if (node.xyz[1] > 0.0) node.xyz[0] = 2.0 + node.xyz[0] * 0.9;
-  const QuadMesh mesh = meshStrip(model, 1, 4.0);
+  const QuadMesh mesh = meshStrip(taperedStrip(3.0, 2.0, 0.9), 1, 4.0);
   EXPECT_LE(triangleCount(mesh), 1u);
   for (const ElementQuality& quality : elementQualities(mesh)) EXPECT_GT(quality.minAngleDeg, 30.0);
 }
@@ -223,10 +229,7 @@ TEST(NarrowSheet, AFourSidedPatchTwoElementsWideGetsAGridWithNodesInside) {
 TEST(NarrowSheet, AFreeSideIsSpacedAgainToMatchTheSideAcross) {
   // A strip 5 mm wide whose long sides differ (40 and 34 mm): at 4 mm one would get 10 pieces, the
   // other 8 or 9; the grid spaces the second again with 10 so that every element is a quad.
-  FeModel model = strip(10, 1, 4.0, 5.0);
-  for (Node& node : model.nodes)
-    if (node.xyz[1] > 0.0) node.xyz[0] = 3.0 + node.xyz[0] * 0.85;
-  const QuadMesh mesh = meshStrip(model, 1, 4.0);
+  const QuadMesh mesh = meshStrip(taperedStrip(5.0, 3.0, 0.85), 1, 4.0);
   EXPECT_EQ(triangleCount(mesh), 0u);
   EXPECT_EQ(mesh.faces.size(), 10u);
 }
