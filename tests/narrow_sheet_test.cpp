@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <set>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "extract/sheet_patches.h"
 #include "geometry/vec3.h"
 #include "pipeline/remesh_part.h"
+#include "voxremesh/pipeline.h"
 #include "voxremesh/quality.h"
 
 using namespace voxremesh;
@@ -232,4 +234,38 @@ TEST(NarrowSheet, AFreeSideIsSpacedAgainToMatchTheSideAcross) {
   const QuadMesh mesh = meshStrip(taperedStrip(5.0, 3.0, 0.85), 1, 4.0);
   EXPECT_EQ(triangleCount(mesh), 0u);
   EXPECT_EQ(mesh.faces.size(), 10u);
+}
+
+TEST(NarrowSheet, ANarrowSheetAtATJunctionSharesItsNodesWithTheSheetsMeshedThroughVolumes) {
+  // One part: a strip 2 mm wide (meshed from its boundary) along a plate 18 mm wide and a wall
+  // 10 mm high (both through volumes), all three meeting at the line y = 2, z = 0.
+  FeModel model;
+  Id next = 1;
+  std::map<std::array<long, 3>, Id> ids;
+  auto node = [&](long x, long y, long z) {
+    const auto [it, added] = ids.emplace(std::array<long, 3>{x, y, z}, next);
+    if (added) model.nodes.push_back({next++, {double(x), double(y), double(z)}});
+    return it->second;
+  };
+  Id shell = 1;
+  for (long x = 0; x < 40; x += 2) {
+    for (long y = 0; y < 20; y += 2)
+      model.shells.push_back(
+          {shell++,
+           1,
+           {node(x, y, 0), node(x + 2, y, 0), node(x + 2, y + 2, 0), node(x, y + 2, 0)}});
+    for (long z = 0; z < 10; z += 2)
+      model.shells.push_back(
+          {shell++,
+           1,
+           {node(x, 2, z), node(x + 2, 2, z), node(x + 2, 2, z + 2), node(x, 2, z + 2)}});
+  }
+  model.partOrAdd(1);
+  RemeshSettings settings;
+  settings.targetSize = 2.0;
+  const RemeshReport report = remeshDeck(model, settings);
+  ASSERT_EQ(report.parts.size(), 1u);
+  const RemeshedPart& part = report.parts.front();
+  EXPECT_EQ(part.acceptance.loopsAfter, part.acceptance.loopsBefore) << part.reason;
+  EXPECT_EQ(part.acceptance.componentsAfter, 1u) << part.reason;
 }
