@@ -3,6 +3,7 @@
 // "Junctions"; pipeline.h partVolumes; quad_mesh.h joinAtJunctions).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <set>
 
@@ -17,6 +18,29 @@ namespace voxremesh {
 namespace {
 
 using Point3 = std::array<double, 3>;
+
+TEST(JoinAtJunctions, JunctionNodesAFewUnitsInTheLastPlaceApartAreOne) {
+  // Two triangles sharing the edge 0-1 as junction nodes; the second sheet's copy of the edge's
+  // end lies one unit in the last place away (the node computed along another chain of its
+  // curve). A Free point at the same place is never merged.
+  auto sheet = [](const Point3& a, const Point3& b, const Point3& c) {
+    QuadMesh mesh;
+    mesh.points = {a, b, c};
+    mesh.faces = {{0, 1, 2, kNoCorner}};
+    mesh.constraints = {{PointRole::Junction, kNoCurve}, {PointRole::Junction, kNoCurve}, {}};
+    return mesh;
+  };
+  const double y = -9.6750325067012302;
+  const double yNext = std::nextafter(y, 0.0);
+  const QuadMesh first = sheet({4.5, y, 32.0}, {4.5, 0.0, 30.0}, {0.0, 0.0, 31.0});
+  const QuadMesh second = sheet({4.5, 0.0, 30.0}, {4.5, yNext, 32.0}, {9.0, 0.0, 31.0});
+  const QuadMesh joined = joinAtJunctions({first, second});
+  EXPECT_EQ(joined.points.size(), 4u);
+  EXPECT_EQ(joined.faces[1][1], joined.faces[0][0]);
+  // Points 1e-6 of the extent apart stay two.
+  const QuadMesh apart = sheet({4.5, 0.0, 30.0}, {4.5, y + 1e-6 * 40.0, 32.0}, {9.0, 0.0, 31.0});
+  EXPECT_EQ(joinAtJunctions({first, apart}).points.size(), 5u);
+}
 
 TEST(JunctionNodes, SameNodesWhicheverWayAndWhereverTheCurveStarts) {
   // A closed square-ish curve with a bend, given from different start points and directions.

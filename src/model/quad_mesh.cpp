@@ -1,10 +1,15 @@
 // Building a QuadMesh from the shells of a model.
 #include "voxremesh/quad_mesh.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 namespace voxremesh {
 
@@ -54,10 +59,69 @@ FeModel modelFromQuadMesh(const QuadMesh& mesh, Id part) {
   return model;
 }
 
+namespace {
+
+/// Junction points by position, found again within a tolerance (a grid of cells that size).
+class JunctionPointIndex {
+ public:
+  explicit JunctionPointIndex(double tolerance) : tolerance_(tolerance) {}
+
+  /// The index stored for a point within the tolerance of p, else stores `index` for p and
+  /// returns it.
+  CornerIndex findOrAdd(const std::array<double, 3>& p, CornerIndex index) {
+    const std::array<long long, 3> cell = cellOf(p);
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz) {
+          const auto it = cells_.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
+          if (it == cells_.end()) continue;
+          for (const auto& [q, stored] : it->second)
+            if (std::abs(q[0] - p[0]) <= tolerance_ && std::abs(q[1] - p[1]) <= tolerance_ &&
+                std::abs(q[2] - p[2]) <= tolerance_)
+              return stored;
+        }
+    cells_[cell].emplace_back(p, index);
+    return index;
+  }
+
+ private:
+  std::array<long long, 3> cellOf(const std::array<double, 3>& p) const {
+    if (!(tolerance_ > 0.0)) return {0, 0, 0};
+    return {static_cast<long long>(std::floor(p[0] / tolerance_)),
+            static_cast<long long>(std::floor(p[1] / tolerance_)),
+            static_cast<long long>(std::floor(p[2] / tolerance_))};
+  }
+
+  double tolerance_;
+  std::map<std::array<long long, 3>, std::vector<std::pair<std::array<double, 3>, CornerIndex>>>
+      cells_;
+};
+
+/// The tolerance within which junction points of the meshes are one: kJunctionWeldShare of the
+/// extent of all their points (rounding of one node computed along two chains of its curve).
+double junctionTolerance(const std::vector<QuadMesh>& meshes) {
+  constexpr double kJunctionWeldShare = 1e-9;
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  std::array<double, 3> low{kInfinity, kInfinity, kInfinity};
+  std::array<double, 3> high{-kInfinity, -kInfinity, -kInfinity};
+  for (const QuadMesh& mesh : meshes)
+    for (const auto& p : mesh.points)
+      for (std::size_t c = 0; c < 3; ++c) {
+        low[c] = std::min(low[c], p[c]);
+        high[c] = std::max(high[c], p[c]);
+      }
+  const double extent =
+      std::sqrt((high[0] - low[0]) * (high[0] - low[0]) + (high[1] - low[1]) * (high[1] - low[1]) +
+                (high[2] - low[2]) * (high[2] - low[2]));
+  return std::isfinite(extent) ? kJunctionWeldShare * extent : 0.0;
+}
+
+}  // namespace
+
 QuadMesh joinAtJunctions(const std::vector<QuadMesh>& meshes) {
   QuadMesh joined;
   if (!meshes.empty()) joined.part = meshes.front().part;
-  std::map<std::array<double, 3>, CornerIndex> junctionPoint;
+  JunctionPointIndex junctionPoint(junctionTolerance(meshes));
   for (const QuadMesh& mesh : meshes) {
     const auto curveBase = static_cast<std::uint32_t>(joined.curves.size());
     joined.curves.insert(joined.curves.end(), mesh.curves.begin(), mesh.curves.end());
@@ -66,15 +130,12 @@ QuadMesh joinAtJunctions(const std::vector<QuadMesh>& meshes) {
       PointConstraint constraint =
           mesh.constraints.empty() ? PointConstraint{} : mesh.constraints[v];
       if (constraint.curve != kNoCurve) constraint.curve += curveBase;
+      const auto next = static_cast<CornerIndex>(joined.points.size());
       if (constraint.role == PointRole::Junction) {
-        const auto [it, inserted] =
-            junctionPoint.emplace(mesh.points[v], static_cast<CornerIndex>(joined.points.size()));
-        if (!inserted) {
-          index[v] = it->second;
-          continue;
-        }
+        index[v] = junctionPoint.findOrAdd(mesh.points[v], next);
+        if (index[v] != next) continue;
       }
-      index[v] = static_cast<CornerIndex>(joined.points.size());
+      index[v] = next;
       joined.points.push_back(mesh.points[v]);
       joined.constraints.push_back(constraint);
     }
