@@ -22,6 +22,9 @@ namespace {
 /// A node facing one across the sheet is placed only this share of the spacing or more from the
 /// nodes before and after it on the loop (so no piece is much shorter than the spacing).
 constexpr double kShortestPiece = 0.4;
+/// One row across a patch is searched among at most this many boundary nodes (the search costs
+/// about the cube of the count where chords are long): a wider sheet is no strip.
+constexpr std::size_t kMostRowNodes = 400;
 /// Two stretches of the loop face each other when their directions differ by more than 135
 /// degrees (the cosine of 45 degrees).
 constexpr double kFacingCosine = 0.7071067811865476;
@@ -230,6 +233,10 @@ QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& 
     for (const auto& quad : grid->quads) mesh.faces.push_back({quad[0], quad[1], quad[2], quad[3]});
     return mesh;
   }
+  if (nodes.size() > kMostRowNodes)
+    throw NarrowSheetRefusal("its boundary has " + std::to_string(nodes.size()) +
+                             " nodes, more than one row across it takes (" +
+                             std::to_string(kMostRowNodes) + ")");
   std::vector<Vec3> normals;
   for (const LoopNode& node : nodes) {
     mesh.points.push_back(node.point);

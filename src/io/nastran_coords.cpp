@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "geometry/vec3.h"
 #include "voxremesh/errors.h"
@@ -15,36 +17,20 @@ namespace {
 
 constexpr double kDegree = M_PI / 180.0;
 
-/// Resolves system `id` (and the systems it refers to) into `frames`; `open` holds the systems
-/// being resolved, to find cycles.
-const CoordFrame& resolve(Id id, const std::map<Id, CoordCard>& cards,
-                          std::map<Id, CoordFrame>& frames, std::set<Id>& open) {
-  if (const auto done = frames.find(id); done != frames.end()) return done->second;
-  const CoordCard& card = cards.at(id);
-  const std::string what = std::string("CORD2") + card.type + " " + std::to_string(id);
-  if (!open.insert(id).second)
-    throw InputError(card.file, card.line,
-                     what +
-                         ": its chain of reference systems (RID) returns "
-                         "to itself",
-                     card.text);
+/// The frame of a card whose reference system is already resolved (`reference`, null for the
+/// basic system).
+CoordFrame frameOf(Id id, const CoordCard& card, const CoordFrame* reference) {
   Vec3 a = card.a, b = card.b, c = card.c;
-  if (card.rid != 0) {
-    if (cards.count(card.rid) == 0)
-      throw InputError(card.file, card.line,
-                       what + " refers to coordinate system " + std::to_string(card.rid) +
-                           ", which the deck does not define by a CORD2R, CORD2C or CORD2S card",
-                       card.text);
-    const CoordFrame& reference = resolve(card.rid, cards, frames, open);
-    a = toBasic(reference, a);
-    b = toBasic(reference, b);
-    c = toBasic(reference, c);
+  if (reference != nullptr) {
+    a = toBasic(*reference, a);
+    b = toBasic(*reference, b);
+    c = toBasic(*reference, c);
   }
   const Vec3 z = b - a;
   const Vec3 y = cross(z, c - a);
   if (!(norm(z) > 0.0) || !(norm(y) > 1e-12 * norm(z) * norm(c - a)))
     throw InputError(card.file, card.line,
-                     what +
+                     std::string("CORD2") + card.type + " " + std::to_string(id) +
                          ": its points A, B and C do not define axes (A = B, or C on the line "
                          "A-B)",
                      card.text);
@@ -54,18 +40,41 @@ const CoordFrame& resolve(Id id, const std::map<Id, CoordCard>& cards,
   frame.axes[2] = normalized(z);
   frame.axes[1] = normalized(y);
   frame.axes[0] = cross(frame.axes[1], frame.axes[2]);
-  open.erase(id);
-  return frames.emplace(id, frame).first->second;
+  return frame;
+}
+
+/// Resolves system `id` and the chain of systems it refers to (iteratively: a chain may be long)
+/// into `frames`.
+void resolve(Id id, const std::map<Id, CoordCard>& cards, std::map<Id, CoordFrame>& frames) {
+  std::vector<Id> chain;  // from `id` down to the first system already resolved or on basic
+  std::set<Id> seen;
+  for (Id at = id; at != 0 && frames.count(at) == 0;) {
+    const CoordCard& card = cards.at(at);
+    const std::string what = std::string("CORD2") + card.type + " " + std::to_string(at);
+    if (!seen.insert(at).second)
+      throw InputError(card.file, card.line,
+                       what + ": its chain of reference systems (RID) returns to itself",
+                       card.text);
+    chain.push_back(at);
+    if (card.rid != 0 && cards.count(card.rid) == 0)
+      throw InputError(card.file, card.line,
+                       what + " refers to coordinate system " + std::to_string(card.rid) +
+                           ", which the deck does not define by a CORD2R, CORD2C or CORD2S card",
+                       card.text);
+    at = card.rid;
+  }
+  for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+    const CoordCard& card = cards.at(*it);
+    const CoordFrame* reference = card.rid == 0 ? nullptr : &frames.at(card.rid);
+    frames.emplace(*it, frameOf(*it, card, reference));
+  }
 }
 
 }  // namespace
 
 std::map<Id, CoordFrame> resolveCoordFrames(const std::map<Id, CoordCard>& cards) {
   std::map<Id, CoordFrame> frames;
-  for (const auto& [id, card] : cards) {
-    std::set<Id> open;
-    resolve(id, cards, frames, open);
-  }
+  for (const auto& entry : cards) resolve(entry.first, cards, frames);
   return frames;
 }
 

@@ -97,6 +97,36 @@ double boundaryMeshSize(const QuadMesh& mesh, double spacing) {
   return std::min(spacing, 2.0 * narrowest);
 }
 
+/// One sheet's mesh through a volume of voxel `voxel`; where the extraction fails (the sheet too
+/// narrow somewhere for the voxel), from its boundary instead when it can be (narrow_sheet.h,
+/// nodes `voxel` apart or twice the sheet's width where that is less). `size` is lowered to the
+/// size the mesh is judged at. Throws the extraction's error (with the refusal) when neither works.
+QuadMesh meshThroughVolumeOrBoundary(const Sheet& sheet, const QuadMesh& surface,
+                                     const ReferenceSurface& original, double voxel,
+                                     const PartPlan& plan, const RemeshSettings& settings,
+                                     double junctionSpacing, RemeshedPart& part, double& size,
+                                     const StageCallback& stage) {
+  try {
+    QuadMesh mesh =
+        meshThroughVolume(sheet, original, voxel, settings, junctionSpacing, part, stage);
+    size = std::min(size, voxel);
+    return mesh;
+  } catch (const SettingError&) {
+    throw;
+  } catch (const std::runtime_error& error) {
+    const double spacing = std::min(voxel, 2.0 * sheetWidth(sheet));
+    try {
+      QuadMesh mesh =
+          meshFromBoundary(sheet, surface, original, spacing, plan.targetSize, junctionSpacing);
+      size = std::min(size, boundaryMeshSize(mesh, spacing));
+      return mesh;
+    } catch (const extract::NarrowSheetRefusal& refusal) {
+      throw std::runtime_error(std::string(error.what()) + "; not meshed from its boundary (" +
+                               refusal.what() + ")");
+    }
+  }
+}
+
 /// One attempt's mesh: every sheet meshed as its plan says (one sheet's volume alive at a
 /// time), then joined at the junctions; the faces folded against their sheet flagged in
 /// `folded`; `size` receives the element size to judge it against (the smallest any sheet
@@ -118,9 +148,9 @@ QuadMesh meshSheets(const std::vector<Sheet>& sheets, const std::vector<SheetPla
                                                plan.targetSize, junctionSpacing));
         size = std::min(size, boundaryMeshSize(sheetMeshes.back(), plans[k].size));
       } else {
-        sheetMeshes.push_back(meshThroughVolume(sheets[k], original, plans[k].size, settings,
-                                                junctionSpacing, part, stage));
-        size = std::min(size, plans[k].size);
+        sheetMeshes.push_back(meshThroughVolumeOrBoundary(sheets[k], surface, original,
+                                                          plans[k].size, plan, settings,
+                                                          junctionSpacing, part, size, stage));
       }
     } catch (const SettingError&) {
       throw;
