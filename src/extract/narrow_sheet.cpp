@@ -89,24 +89,52 @@ std::vector<double> facingParams(const PolylineParam& loop, double c0, double c1
   return params;
 }
 
-/// The nodes on the loop (see narrow_sheet.h), ascending arc length; free stretches also line up
-/// with the nodes of `across` (those of another loop of the patch).
-std::vector<LoopNode> loopNodes(const std::vector<Vec3>& points, const std::vector<char>& corner,
-                                const JunctionNodes& junctions, double spacing, double tolerance,
-                                double reach, const std::vector<FacingSource>& across) {
-  const PolylineParam loop(points, true);
-  const std::size_t m = points.size();
-  const double length = loop.length();
-  std::vector<const JunctionEdgeNodes*> junctionEdge(m, nullptr);
-  for (std::size_t s = 0; s < m; ++s)
-    junctionEdge[s] = junctions.edge(points[s], points[(s + 1) % m]);
-  auto onJunction = [&](double v) { return junctionEdge[segmentAt(loop, v)] != nullptr; };
+/// A closed loop of points with the junction edges on it: arc lengths, and the nodes and gaps of
+/// a node list along it.
+struct NodeLoop {
+  PolylineParam loop;
+  double length;
+  std::vector<const JunctionEdgeNodes*> junctionEdge;  ///< per segment, or null
 
+  NodeLoop(const std::vector<Vec3>& points, const JunctionNodes& junctions)
+      : loop(points, true), length(loop.length()), junctionEdge(points.size(), nullptr) {
+    for (std::size_t s = 0; s < points.size(); ++s)
+      junctionEdge[s] = junctions.edge(points[s], points[(s + 1) % points.size()]);
+  }
+  /// The arc length where the gap after nodes[j] ends (past the length for the last).
+  double gapEnd(const std::vector<LoopNode>& nodes, std::size_t j) const {
+    return j + 1 < nodes.size() ? nodes[j + 1].param : nodes[0].param + length;
+  }
+  /// True when nodes may go into the gap after nodes[j]: it is not a stretch between two nodes
+  /// of a junction curve.
+  bool free(const std::vector<LoopNode>& nodes, std::size_t j) const {
+    const double middle = std::fmod(0.5 * (nodes[j].param + gapEnd(nodes, j)), length);
+    return !(nodes[j].role == PointRole::Junction &&
+             nodes[(j + 1) % nodes.size()].role == PointRole::Junction &&
+             junctionEdge[segmentAt(loop, middle)] != nullptr);
+  }
+  /// A Boundary node at arc length v (wrapped into the loop).
+  LoopNode nodeAt(double v) const {
+    v = std::fmod(v, length);
+    return LoopNode{v, toArray(loop.pointAt(v)), PointRole::Boundary};
+  }
+};
+
+bool byParam(const LoopNode& a, const LoopNode& b) {
+  return a.param < b.param;
+}
+
+/// The nodes the loop prescribes, ascending: the junction curves' nodes on its junction edges
+/// (with the ends of each junction stretch) and its corners; a junction node wins over a corner
+/// at the same place.
+std::vector<LoopNode> anchorNodes(const NodeLoop& walk, const std::vector<Vec3>& points,
+                                  const std::vector<char>& corner, const JunctionNodes& junctions) {
+  const std::size_t m = points.size();
   std::vector<LoopNode> anchors;
   for (std::size_t s = 0; s < m; ++s) {
-    const JunctionEdgeNodes* edge = junctionEdge[s];
+    const JunctionEdgeNodes* edge = walk.junctionEdge[s];
     if (edge == nullptr) continue;
-    const double s0 = loop.vertexParam(s), s1 = loop.vertexParam(s + 1);
+    const double s0 = walk.loop.vertexParam(s), s1 = walk.loop.vertexParam(s + 1);
     const bool forward = edge->from == points[s];
     for (std::size_t j = 0; j < edge->along.size(); ++j) {
       const double t = forward ? edge->along[j] : 1.0 - edge->along[j];
@@ -114,80 +142,88 @@ std::vector<LoopNode> loopNodes(const std::vector<Vec3>& points, const std::vect
     }
     for (const std::size_t end : {s, s + 1}) {  // a stretch's ends and the curve's own nodes
       const std::size_t other = end == s ? (s + m - 1) % m : (s + 1) % m;
-      if (junctions.isNodePoint(points[end % m]) || junctionEdge[other] == nullptr)
-        anchors.push_back(
-            {std::fmod(loop.vertexParam(end), length), points[end % m], PointRole::Junction});
+      if (junctions.isNodePoint(points[end % m]) || walk.junctionEdge[other] == nullptr)
+        anchors.push_back({std::fmod(walk.loop.vertexParam(end), walk.length), points[end % m],
+                           PointRole::Junction});
     }
   }
   for (std::size_t i = 0; i < m; ++i)
-    if (corner[i]) anchors.push_back({loop.vertexParam(i), points[i], PointRole::Corner});
+    if (corner[i]) anchors.push_back({walk.loop.vertexParam(i), points[i], PointRole::Corner});
   std::stable_sort(anchors.begin(), anchors.end(), [](const LoopNode& a, const LoopNode& b) {
     return a.param < b.param ||
            (a.param == b.param && a.role == PointRole::Junction && b.role != PointRole::Junction);
   });
   anchors.erase(std::unique(anchors.begin(), anchors.end(),
                             [&](const LoopNode& a, const LoopNode& b) {
-                              return b.param - a.param <= 1e-12 * length;
+                              return b.param - a.param <= 1e-12 * walk.length;
                             }),
                 anchors.end());
   if (anchors.empty()) anchors.push_back({0.0, points[0], PointRole::Boundary});
+  return anchors;
+}
 
-  auto gapEnd = [&](const std::vector<LoopNode>& nodes, std::size_t j) {
-    return j + 1 < nodes.size() ? nodes[j + 1].param : nodes[0].param + length;
-  };
-  auto free = [&](const std::vector<LoopNode>& nodes, std::size_t j) {
-    const double middle = std::fmod(0.5 * (nodes[j].param + gapEnd(nodes, j)), length);
-    return !(nodes[j].role == PointRole::Junction &&
-             nodes[(j + 1) % nodes.size()].role == PointRole::Junction && onJunction(middle));
-  };
-  auto nodeAt = [&](double v) {
-    v = std::fmod(v, length);
-    return LoopNode{v, toArray(loop.pointAt(v)), PointRole::Boundary};
-  };
-  // Free stretches in loop order: first the points facing nodes already placed across the
-  // sheet (so that rows run straight across; corners excepted), then even pieces about
-  // `spacing` long between.
+/// The anchors plus nodes in their free gaps, in loop order: first the points facing nodes
+/// already placed across the sheet (so that rows run straight across; corners excepted), then
+/// even pieces about `spacing` long between; ascending.
+std::vector<LoopNode> fillFreeGaps(const NodeLoop& walk, const std::vector<LoopNode>& anchors,
+                                   double spacing, double reach,
+                                   const std::vector<FacingSource>& across) {
   std::vector<LoopNode> nodes = anchors;
   for (std::size_t j = 0; j < anchors.size(); ++j) {
-    if (!free(anchors, j)) continue;
-    const double c0 = anchors[j].param, c1 = gapEnd(anchors, j);
+    if (!walk.free(anchors, j)) continue;
+    const double c0 = anchors[j].param, c1 = walk.gapEnd(anchors, j);
     std::vector<FacingSource> placed = across;
     for (const LoopNode& node : nodes)  // a corner across (a strip's tapered end) is no row
       if (node.role != PointRole::Corner)
-        placed.push_back({node.point, tangentAt(loop, node.param)});
+        placed.push_back({node.point, tangentAt(walk.loop, node.param)});
     std::vector<double> breaks{c0};
-    for (const double v : facingParams(loop, c0, c1, placed, reach))
+    for (const double v : facingParams(walk.loop, c0, c1, placed, reach))
       if (v - breaks.back() >= kShortestPiece * spacing && c1 - v >= kShortestPiece * spacing)
         breaks.push_back(v);
     breaks.push_back(c1);
     for (std::size_t b = 0; b + 1 < breaks.size(); ++b) {
-      if (b > 0) nodes.push_back(nodeAt(breaks[b]));
+      if (b > 0) nodes.push_back(walk.nodeAt(breaks[b]));
       const long pieces = std::max(1L, std::lround((breaks[b + 1] - breaks[b]) / spacing));
       for (long q = 1; q < pieces; ++q)
         nodes.push_back(
-            nodeAt(breaks[b] + (breaks[b + 1] - breaks[b]) * double(q) / double(pieces)));
+            walk.nodeAt(breaks[b] + (breaks[b + 1] - breaks[b]) * double(q) / double(pieces)));
     }
   }
-  std::stable_sort(nodes.begin(), nodes.end(),
-                   [](const LoopNode& a, const LoopNode& b) { return a.param < b.param; });
+  std::stable_sort(nodes.begin(), nodes.end(), byParam);
+  return nodes;
+}
+
+/// Adds the loop points farther than `tolerance` from the chords of free gaps, then one node in
+/// the longest free gap when the count is odd (quads need an even count); keeps the order.
+void addFarPointsAndEvenCount(const NodeLoop& walk, std::vector<LoopNode>& nodes,
+                              double tolerance) {
   std::vector<double> far;
   for (std::size_t j = 0; j < nodes.size(); ++j)
-    if (free(nodes, j)) addFarVertices(loop, nodes[j].param, gapEnd(nodes, j), tolerance, far);
-  for (const double v : far) nodes.push_back(nodeAt(v));
-  auto byParam = [](const LoopNode& a, const LoopNode& b) { return a.param < b.param; };
+    if (walk.free(nodes, j))
+      addFarVertices(walk.loop, nodes[j].param, walk.gapEnd(nodes, j), tolerance, far);
+  for (const double v : far) nodes.push_back(walk.nodeAt(v));
   std::stable_sort(nodes.begin(), nodes.end(), byParam);
-  if (nodes.size() % 2 == 1) {  // quads only need an even count: split the longest free gap
-    std::size_t widest = nodes.size();
-    for (std::size_t j = 0; j < nodes.size(); ++j)
-      if (free(nodes, j) &&
-          (widest == nodes.size() ||
-           gapEnd(nodes, j) - nodes[j].param > gapEnd(nodes, widest) - nodes[widest].param))
-        widest = j;
-    if (widest < nodes.size()) {
-      nodes.push_back(nodeAt(0.5 * (nodes[widest].param + gapEnd(nodes, widest))));
-      std::stable_sort(nodes.begin(), nodes.end(), byParam);
-    }
-  }
+  if (nodes.size() % 2 == 0) return;
+  std::size_t widest = nodes.size();
+  for (std::size_t j = 0; j < nodes.size(); ++j)
+    if (walk.free(nodes, j) &&
+        (widest == nodes.size() ||
+         walk.gapEnd(nodes, j) - nodes[j].param > walk.gapEnd(nodes, widest) - nodes[widest].param))
+      widest = j;
+  if (widest == nodes.size()) return;
+  nodes.push_back(walk.nodeAt(0.5 * (nodes[widest].param + walk.gapEnd(nodes, widest))));
+  std::stable_sort(nodes.begin(), nodes.end(), byParam);
+}
+
+/// The nodes on the loop (see narrow_sheet.h), ascending arc length; free stretches also line up
+/// with the nodes of `across` (those of another loop of the patch).
+std::vector<LoopNode> loopNodes(const std::vector<Vec3>& points, const std::vector<char>& corner,
+                                const JunctionNodes& junctions, double spacing, double tolerance,
+                                double reach, const std::vector<FacingSource>& across) {
+  const NodeLoop walk(points, junctions);
+  std::vector<LoopNode> nodes =
+      fillFreeGaps(walk, anchorNodes(walk, points, corner, junctions), spacing, reach, across);
+  addFarPointsAndEvenCount(walk, nodes, tolerance);
   return nodes;
 }
 
