@@ -3,17 +3,22 @@
 //
 // A sheet narrower than a few voxels leaves the volume's dual mesh too little room: the strip
 // between the dual mesh and the boundary cannot be zipped, or pieces and loops are lost. Such a
-// sheet, when it is a disk (one boundary loop), gets nodes on its boundary only and one row of
-// quads across it:
-// - Nodes on the loop: its corners; on junction stretches (edges of junction curves) the nodes the
-//   junction curves prescribe (junction_nodes.h), with their exact coordinates, so that the
-//   neighbouring sheet or part gets the same ones; between those, nodes evenly spaced about
-//   `spacing` apart along the loop, and loop points farther than `tolerance` from the chord
-//   between two nodes (Douglas-Peucker); one more node where the count would be odd.
-// - Faces: polygonQuads over those nodes (polygon_quads.h), chords allowed where points sampled
-//   along them lie within `tolerance` of the sheet, faces agreeing with the sheet's normals.
-// The mesh is of the same kind as an extracted one: nodes with role Corner, Junction or Boundary
-// on curve 0, the loop.
+// sheet is cut into patches along the junction curves that run through it (sheet_patches.h);
+// each patch, a disk or a ring, gets nodes on its boundary loops:
+// - its corners; on junction stretches (edges of junction curves) the nodes the junction curves
+//   prescribe (junction_nodes.h), with their exact coordinates, so that the neighbouring sheet or
+//   part gets the same ones;
+// - on free stretches, first the points facing nodes already placed across the patch (where the
+//   loop runs against the node's stretch), then nodes evenly spaced about `spacing` apart, then
+//   loop points farther than `tolerance` from the chord between two nodes (Douglas-Peucker), and
+//   one more node where the count would be odd.
+// Faces: a disk whose loop turns sharply at exactly four nodes becomes a grid (mapped_patch.h,
+// nodes inside where it is more than one element wide); any other disk, and a ring joined into
+// one polygon by a bridge between its loops, gets one row of quads across (polygon_quads.h),
+// chords allowed where points sampled along them lie within `tolerance` of the sheet, faces
+// agreeing with the sheet's normals. The patches are joined at their shared junction nodes. The
+// mesh is of the same kind as an extracted one: nodes with role Corner, Junction or Boundary on
+// their loop's curve, grid nodes inside Free.
 #pragma once
 
 #include <stdexcept>
@@ -25,8 +30,8 @@
 
 namespace voxremesh::extract {
 
-/// Why a sheet cannot be meshed from its boundary: not a disk, a junction inside it, or no mesh
-/// of its boundary nodes near enough to it.
+/// Why a sheet cannot be meshed from its boundary: a patch neither a disk nor a ring, a junction
+/// curve ending inside it, or no mesh of its boundary nodes near enough to it.
 class NarrowSheetRefusal : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -39,15 +44,16 @@ struct NarrowSheetSettings {
   double maxChord = 0.0;   ///< the longest edge across the sheet, > 0
 };
 
-/// Meshes a disk-like sheet from its boundary nodes (see the top of the file).
-/// @param sheet      the sheet: one boundary loop running with the sheet on its left
+/// Meshes a narrow sheet from its boundary nodes (see the top of the file).
+/// @param sheet      the sheet (buildSheets): boundary loops running with the sheet on their left
 /// @param surface    sheetSurface of the sheet (its faces, oriented as the sheet)
 /// @param reference  the closest-point structure built from `surface`
 /// @param junctions  the nodes of the junction curves (those of the sheet's part)
 /// @param settings   see NarrowSheetSettings
 /// @return the mesh, oriented as the sheet, part sheet.part
-/// Throws std::invalid_argument for settings not > 0; NarrowSheetRefusal (with the reason) when
-/// the sheet is not a disk, a junction curve runs through its inside, or no mesh fits.
+/// Throws std::invalid_argument for settings not > 0; NarrowSheetRefusal (with the reason) when a
+/// patch is neither a disk nor a ring, a junction curve ends inside the sheet, a row across would
+/// have more than 400 boundary nodes, or no mesh of the nodes stays on the sheet.
 QuadMesh meshNarrowSheet(const Sheet& sheet, const QuadMesh& surface,
                          const ReferenceSurface& reference, const JunctionNodes& junctions,
                          const NarrowSheetSettings& settings);
