@@ -355,6 +355,11 @@ TEST(AbaqusRead, RefusesWhatItCannotCarryThrough) {
   expectInputError(read(p), p, 1, "SYSTEM=C");
   p = put(dir, "normals.inp", "*NODE\n1, 0, 0, 0, 0, 0, 1\n");
   expectInputError(read(p), p, 2, "normal direction cosines");
+  // An element line continued with ',' past the end of the deck (it once read before its buffer:
+  // ../shared/data/malformed/continuation_at_eof.inp).
+  p = put(dir, "continued.inp",
+          "*NODE\n1, 0., 0., 0.\n2, 1., 0., 0.\n3, 1., 1., 0.\n*ELEMENT, TYPE=S3\n1, 1,\n2,\n");
+  expectInputError(read(p), p, 7, "element 1 has 2 node(s); type S3 needs 3");
 }
 
 TEST(AbaqusRead, KeepsOtherElementTypesVerbatim) {

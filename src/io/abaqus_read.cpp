@@ -236,7 +236,9 @@ class DeckLines {
     std::uint32_t index = 0;
   };
 
-  const Frame& top() const { return *frames_.back(); }
+  /// The file being read; after the end of the deck the last one read (its last line), so that
+  /// an error found at the end (a data line continued past the last line) still names a place.
+  const Frame& top() const { return frames_.empty() ? *finished_.back() : *frames_.back(); }
 
   static std::string identity(const fs::path& path) {
     std::error_code error;

@@ -149,6 +149,7 @@ void ShellEdges::build(const std::vector<ShellCorners>& corners) {
     for (std::size_t a = 0; a < span; ++a) {
       Side* first = sorted.data() + begin[a];
       Side* last = sorted.data() + begin[a + 1];
+      if (last - first < 2) continue;  // (no pointer past an empty bucket, which may be null)
       if (last - first > 16) {
         std::sort(first, last, less);
         continue;
