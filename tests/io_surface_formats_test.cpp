@@ -550,6 +550,16 @@ TEST(Ply, BadInputNamesFileAndLineOrByteOffset) {
   expectInputError(
       read(p), p, 0,
       "file ends at byte offset " + std::to_string(body + 36 + 7) + " while reading face 0 of 1");
+  // An element without properties holds no bytes, whatever its count (a count of 15,555,555,555
+  // once looped for ever: ../shared/data/malformed/empty_element_hang.ply).
+  std::string empty = binary.substr(0, body - 11) + "element nothing 15555555555\nend_header\n";
+  const float corners[9] = {0, 0, 0, 1, 0, 0, 1, 1, 0};
+  const std::int32_t face[3] = {0, 1, 2};
+  empty.append(reinterpret_cast<const char*>(corners), sizeof corners);
+  empty += '\x03';
+  empty.append(reinterpret_cast<const char*>(face), sizeof face);
+  p = put(dir, "empty_element.ply", empty);
+  EXPECT_EQ(io::readPly(p, w).shells.size(), 1u);
   p = put(dir, "notply.ply", "solid x\n");
   expectInputError(read(p), p, 1, "not a PLY file");
   p = put(dir, "noend.ply", "ply\nformat ascii 1.0\nelement vertex 3\n");

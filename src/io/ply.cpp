@@ -372,6 +372,7 @@ void readBinaryBody(const Header& header, const std::string& content, MeshBuilde
   for (const Element& element : header.elements) {
     const bool isVertex = element.name == "vertex";
     const bool isFace = element.name == "face";
+    if (element.properties.empty()) continue;  // its records hold no bytes, whatever its count
     for (std::int64_t i = 0; i < element.count; ++i) {
       auto need = [&](std::uint64_t bytes) {
         if (bytes > size - pos)
