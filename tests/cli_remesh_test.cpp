@@ -244,3 +244,16 @@ TEST(RemeshCli, ShellsOnASolidMeshEndQuicklyWithinAnAddressSpaceLimit) {
       << run.output;
   EXPECT_EQ(readDeck(dir / "out.bdf").shells.size(), readDeck(deck).shells.size());
 }
+
+TEST(RemeshCli, AnOffHeaderClaimingBillionsOfVerticesIsRefusedWithinAFewHundredMegabytes) {
+  // A 40-byte OFF file once asked for 3.5 GiB before reading its first vertex
+  // (../shared/data/malformed/huge_count_3gb.off): room is reserved for what the file can hold.
+  const fs::path dir = scratchDir("remesh_huge_off");
+  test::writeText(dir / "huge.off", "OFF\n5000000000 5000000000 0\n40\n1\n");
+  const test::CliResult run =
+      test::runShell("prlimit --as=300000000 -- " + std::string(VOXREMESH_CLI) + " info " +
+                     quoted(dir / "huge.off") + " 2>&1");
+  EXPECT_EQ(run.exitCode, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "huge.off:3: vertex 0 has fewer than three coordinates"))
+      << run.output;
+}

@@ -79,8 +79,13 @@ FeModel readOff(const std::filesystem::path& path, Warnings& warnings) {
     counts = true;
   }
   if (!counts) fail("file ends before the vertex and face counts");
-  builder.reserve(static_cast<std::size_t>(std::min<std::int64_t>(vertexCount, 1 << 26)),
-                  static_cast<std::size_t>(std::min<std::int64_t>(faceCount, 1 << 26)));
+  // Room for what the file can hold: a vertex line takes at least 6 bytes ("0 0 0\n"), a face
+  // line at least 8 ("3 0 1 2\n"), whatever counts the header claims.
+  const auto fits = [&](std::int64_t count, std::size_t lineBytes) {
+    return static_cast<std::size_t>(
+        std::min<std::int64_t>(count, static_cast<std::int64_t>(text.size() / lineBytes)));
+  };
+  builder.reserve(fits(vertexCount, 6), fits(faceCount, 8));
   builder.usePartNamed(path.stem().string());
 
   std::int64_t vertices = 0;
