@@ -110,16 +110,6 @@ struct TargetLoop {
   std::vector<std::array<double, 3>> points;
   std::vector<std::uint32_t> segmentCurve;  ///< per segment i -> i+1: the curve, or kNoCurve
   std::vector<double> cornerParams;         ///< arc lengths of nodes the strip must have
-
-  /// The segment holding arc length s (s in [0, length)).
-  std::size_t segmentAt(const PolylineParam& param, double s) const {
-    std::size_t lo = 0, hi = points.size();
-    while (hi - lo > 1) {
-      const std::size_t mid = (lo + hi) / 2;
-      (param.vertexParam(mid) <= s ? lo : hi) = mid;
-    }
-    return lo;
-  }
 };
 
 /// Joins the loops into one target loop: starting from the first, each further loop is inserted
@@ -288,7 +278,7 @@ struct JunctionStretches {
   /// True when arc length v (in [0, length)) lies on a junction stretch, its ends included.
   bool contains(const TargetLoop& target, const PolylineParam& loop, double v) const {
     if (!any) return false;
-    const std::size_t s = target.segmentAt(loop, v);
+    const std::size_t s = loop.segmentAt(v);
     const std::size_t count = target.points.size();
     return segment[s] || (v <= loop.vertexParam(s) && segment[(s + count - 1) % count]);
   }
@@ -314,7 +304,7 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
   std::size_t start = m;
   for (int pass = 0; pass < 2 && start == m; ++pass)
     for (std::size_t i = 0; i < m; ++i)
-      if ((pass == 1 || target.segmentCurve[target.segmentAt(loop, t[i])] != kNoCurve) &&
+      if ((pass == 1 || target.segmentCurve[loop.segmentAt(t[i])] != kNoCurve) &&
           (start == m || distance[i] < distance[start]))
         start = i;
   const double base = t[start];
@@ -355,7 +345,7 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
   };
   auto onJunction = [&](double c) { return stretches.contains(target, loop, absolute(c)); };
   auto onBridge = [&](double c) {
-    return target.segmentCurve[target.segmentAt(loop, absolute(c))] == kNoCurve;
+    return target.segmentCurve[loop.segmentAt(absolute(c))] == kNoCurve;
   };
 
   // The nodes the loop prescribes: corners (bridge ends included) and junction nodes.
@@ -389,7 +379,7 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
   auto wrap = [&](double c) { return c >= length ? c - length : c; };
   // Whether the gap [c0, c1] is exactly one bridge segment (from one bridge end to the other).
   auto isWholeBridge = [&](double c0, double c1) {
-    const std::size_t segment = target.segmentAt(loop, absolute(0.5 * (c0 + c1)));
+    const std::size_t segment = loop.segmentAt(absolute(0.5 * (c0 + c1)));
     const double bridge = loop.vertexParam(segment + 1) - loop.vertexParam(segment);
     return std::abs((c1 - c0) - bridge) <= 1e-9 * length;
   };
@@ -402,7 +392,7 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
       // A bridge across a neck the dual mesh did not pass: nodes inside the surface about
       // `spacing` apart, so that the faces across the neck are of the element size and the
       // optimisation can lay them on the surface (they are Free points once welded).
-      const std::size_t segment = target.segmentAt(loop, absolute(middle));
+      const std::size_t segment = loop.segmentAt(absolute(middle));
       const long pieces = bridgePieces(
           target.points[segment], target.points[(segment + 1) % target.points.size()], spacing);
       const double c0 = anchors[j].param, c1 = gapEnd(anchors, j);
@@ -462,7 +452,7 @@ void buildStrip(QuadMesh& mesh, const std::vector<std::uint32_t>& dualLoop,
   for (std::size_t j = 0; j < n; ++j) {
     Vec3d p = loop.pointAt(nodes[j].param + base);
     const double v = absolute(nodes[j].param);
-    std::size_t segment = target.segmentAt(loop, v);
+    std::size_t segment = loop.segmentAt(v);
     if (nodes[j].kind == OuterNode::Kind::Junction) {  // exact, as on every other side
       const std::array<double, 3>& point = stretches.nodes[nodes[j].junctionNode].point;
       b[j] = static_cast<std::uint32_t>(mesh.points.size());

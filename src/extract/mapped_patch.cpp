@@ -15,10 +15,6 @@ namespace {
 /// The loop turns by more than this (degrees) at a corner of a mapped patch.
 constexpr double kMappedCornerDeg = 45.0;
 
-Vec3 toArray(const openvdb::math::Vec3d& p) {
-  return {p[0], p[1], p[2]};
-}
-
 /// The indices of the nodes where the loop of nodes turns by more than kMappedCornerDeg.
 std::vector<std::size_t> turningNodes(const std::vector<LoopNode>& nodes) {
   std::vector<std::size_t> corners;

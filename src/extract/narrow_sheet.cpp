@@ -29,23 +29,9 @@ constexpr std::size_t kMostRowNodes = 400;
 /// degrees (the cosine of 45 degrees).
 constexpr double kFacingCosine = 0.7071067811865476;
 
-Vec3 toArray(const openvdb::math::Vec3d& p) {
-  return {p[0], p[1], p[2]};
-}
-
-/// The loop segment holding arc length v (in [0, length)).
-std::size_t segmentAt(const PolylineParam& loop, double v) {
-  std::size_t lo = 0, hi = loop.pointCount();
-  while (hi - lo > 1) {
-    const std::size_t mid = (lo + hi) / 2;
-    (loop.vertexParam(mid) <= v ? lo : hi) = mid;
-  }
-  return lo;
-}
-
 /// The unit direction of the loop's segment holding arc length v.
 openvdb::math::Vec3d tangentAt(const PolylineParam& loop, double v) {
-  const std::size_t s = segmentAt(loop, std::fmod(v, loop.length()));
+  const std::size_t s = loop.segmentAt(std::fmod(v, loop.length()));
   openvdb::math::Vec3d d = loop.point((s + 1) % loop.pointCount()) - loop.point(s);
   return d.length() > 0.0 ? d / d.length() : d;
 }
@@ -69,7 +55,7 @@ std::vector<double> facingParams(const PolylineParam& loop, double c0, double c1
     const openvdb::math::Vec3d p(source.point[0], source.point[1], source.point[2]);
     double best = reach, bestParam = -1.0;
     // The segments overlapping [c0, c1], with their arc lengths unwrapped past c0.
-    for (std::size_t step = 0, s = segmentAt(loop, std::fmod(c0, length)); step <= m;
+    for (std::size_t step = 0, s = loop.segmentAt(std::fmod(c0, length)); step <= m;
          ++step, s = (s + 1) % m) {
       double v0 = loop.vertexParam(s), v1 = loop.vertexParam(s + 1);
       while (v1 <= c0) v0 += length, v1 += length;
@@ -111,7 +97,7 @@ struct NodeLoop {
     const double middle = std::fmod(0.5 * (nodes[j].param + gapEnd(nodes, j)), length);
     return !(nodes[j].role == PointRole::Junction &&
              nodes[(j + 1) % nodes.size()].role == PointRole::Junction &&
-             junctionEdge[segmentAt(loop, middle)] != nullptr);
+             junctionEdge[loop.segmentAt(middle)] != nullptr);
   }
   /// A Boundary node at arc length v (wrapped into the loop).
   LoopNode nodeAt(double v) const {
@@ -246,6 +232,32 @@ Vec3 normalAt(const QuadMesh& surface, const ReferenceSurface& reference, const 
                        surface.points[face[triangle ? 2 : 3]], triangle);
 }
 
+/// Appends to `mesh` one row of faces across a boundary polygon (polygonQuads): its corners
+/// `polygon`, corner k being mesh point pointOf[k] (a point may be two corners: a ring's bridge).
+/// Throws NarrowSheetRefusal when the polygon has more than kMostRowNodes corners or no mesh of
+/// them stays within the tolerance of the surface.
+void addRowFaces(QuadMesh& mesh, const std::vector<Vec3>& polygon,
+                 const std::vector<std::uint32_t>& pointOf, const QuadMesh& surface,
+                 const ReferenceSurface& reference, const NarrowSheetSettings& settings) {
+  if (polygon.size() > kMostRowNodes)
+    throw NarrowSheetRefusal("its boundary has " + std::to_string(polygon.size()) +
+                             " nodes, more than one row across it takes (" +
+                             std::to_string(kMostRowNodes) + ")");
+  std::vector<Vec3> normals;
+  for (const Vec3& p : polygon) normals.push_back(normalAt(surface, reference, p));
+  const std::vector<PolygonFace> faces =
+      polygonQuads(polygon, normals, settings.maxChord, [&](std::size_t i, std::size_t j) {
+        return pointOf[i] != pointOf[j] && chordOnSurface(polygon[i], polygon[j], reference,
+                                                          settings.spacing, settings.tolerance);
+      });
+  if (faces.empty())
+    throw NarrowSheetRefusal("no row of faces across it between its " +
+                             std::to_string(mesh.points.size()) + " boundary nodes stays on it");
+  for (const PolygonFace& face : faces)
+    mesh.faces.push_back({pointOf[face[0]], pointOf[face[1]], pointOf[face[2]],
+                          face[3] == UINT32_MAX ? kNoCorner : pointOf[face[3]]});
+}
+
 /// The mesh of one patch from the nodes of its loop (see narrow_sheet.h): a grid where the patch
 /// is four-sided (mapped_patch.h), else one row across its boundary polygon (polygon_quads.h).
 QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& corner,
@@ -269,26 +281,15 @@ QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& 
     for (const auto& quad : grid->quads) mesh.faces.push_back({quad[0], quad[1], quad[2], quad[3]});
     return mesh;
   }
-  if (nodes.size() > kMostRowNodes)
-    throw NarrowSheetRefusal("its boundary has " + std::to_string(nodes.size()) +
-                             " nodes, more than one row across it takes (" +
-                             std::to_string(kMostRowNodes) + ")");
-  std::vector<Vec3> normals;
+  std::vector<Vec3> polygon;
+  std::vector<std::uint32_t> pointOf;
   for (const LoopNode& node : nodes) {
+    pointOf.push_back(std::uint32_t(mesh.points.size()));
+    polygon.push_back(node.point);
     mesh.points.push_back(node.point);
     mesh.constraints.push_back({node.role, 0});
-    normals.push_back(surfaceNormal(node.point));
   }
-  const std::vector<PolygonFace> faces =
-      polygonQuads(mesh.points, normals, settings.maxChord, [&](std::size_t i, std::size_t j) {
-        return chordOnSurface(mesh.points[i], mesh.points[j], reference, settings.spacing,
-                              settings.tolerance);
-      });
-  if (faces.empty())
-    throw NarrowSheetRefusal("no row of faces across it between its " +
-                             std::to_string(nodes.size()) + " boundary nodes stays on it");
-  for (const PolygonFace& face : faces)
-    mesh.faces.push_back({face[0], face[1], face[2], face[3] == UINT32_MAX ? kNoCorner : face[3]});
+  addRowFaces(mesh, polygon, pointOf, surface, reference, settings);
   return mesh;
 }
 
@@ -326,7 +327,7 @@ QuadMesh meshRing(const std::array<std::vector<Vec3>, 2>& loops,
   mesh.curves.push_back({loops[1], true, PointRole::Boundary});
   // Polygon: the first loop from a0 round to a0 again, then the second from b0 round to b0.
   std::vector<std::uint32_t> pointOf;  // polygon corner -> mesh point
-  std::vector<Vec3> polygon, normals;
+  std::vector<Vec3> polygon;
   auto add = [&](const std::vector<LoopNode>& nodes, std::size_t start, std::uint32_t curve) {
     const std::uint32_t base = std::uint32_t(mesh.points.size());
     for (const LoopNode& node : nodes) {
@@ -337,24 +338,11 @@ QuadMesh meshRing(const std::array<std::vector<Vec3>, 2>& loops,
       const std::size_t i = (start + k) % nodes.size();
       pointOf.push_back(base + std::uint32_t(i));
       polygon.push_back(nodes[i].point);
-      normals.push_back(normalAt(surface, reference, nodes[i].point));
     }
   };
   add(first, a0, 0);
   add(second, b0, 1);
-  const std::vector<PolygonFace> faces =
-      polygonQuads(polygon, normals, settings.maxChord, [&](std::size_t i, std::size_t j) {
-        if (pointOf[i] == pointOf[j]) return false;
-        return chordOnSurface(polygon[i], polygon[j], reference, settings.spacing,
-                              settings.tolerance);
-      });
-  if (faces.empty())
-    throw NarrowSheetRefusal("no row of faces across it between its " +
-                             std::to_string(first.size() + second.size()) +
-                             " boundary nodes stays on it");
-  for (const PolygonFace& face : faces)
-    mesh.faces.push_back({pointOf[face[0]], pointOf[face[1]], pointOf[face[2]],
-                          face[3] == UINT32_MAX ? kNoCorner : pointOf[face[3]]});
+  addRowFaces(mesh, polygon, pointOf, surface, reference, settings);
   return mesh;
 }
 

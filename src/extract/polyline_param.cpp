@@ -25,6 +25,15 @@ PolylineParam::PolylineParam(const std::vector<std::array<double, 3>>& points, b
   arc_[points_.size()] = arc_[points_.size() - 1] + closing;
 }
 
+std::size_t PolylineParam::segmentAt(double s) const {
+  std::size_t lo = 0, hi = points_.size();
+  while (hi - lo > 1) {
+    const std::size_t mid = (lo + hi) / 2;
+    (arc_[mid] <= s ? lo : hi) = mid;
+  }
+  return lo;
+}
+
 double PolylineParam::closestParam(const Vec3d& p, double& distance) const {
   const std::size_t n = points_.size();
   const std::size_t segments = closed_ ? n : n - 1;

@@ -25,6 +25,8 @@ class PolylineParam {
   double vertexParam(std::size_t i) const { return arc_[i]; }
   const openvdb::math::Vec3d& point(std::size_t i) const { return points_[i]; }
 
+  /// The segment (from point i to point i + 1) holding arc length s, s in [0, length()).
+  std::size_t segmentAt(double s) const;
   /// The arc length of the closest point of the polyline to p; `distance` receives the distance.
   double closestParam(const openvdb::math::Vec3d& p, double& distance) const;
   /// The point at arc length s; closed polylines wrap s into [0, length()), open ones clamp.
@@ -38,6 +40,11 @@ class PolylineParam {
   bool closed_ = false;
   openvdb::math::Vec3d boxMin_, boxMax_;
 };
+
+/// The point as the std::array that meshes and curves hold.
+inline std::array<double, 3> toArray(const openvdb::math::Vec3d& p) {
+  return {p[0], p[1], p[2]};
+}
 
 /// Appends to `out` the arc lengths of the polyline's points strictly between s0 and s1 (s0 < s1;
 /// on a closed polyline both may exceed the length) that lie farther than `tolerance` from the

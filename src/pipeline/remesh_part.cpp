@@ -26,10 +26,12 @@ double since(std::chrono::steady_clock::time_point start) {
 }
 
 /// How one sheet is meshed in an attempt: from its boundary alone (narrow_sheet.h) with nodes
-/// `size` apart, or through a volume of voxel `size`.
+/// `size` apart, made once when planning (`boundaryMesh`, the same for every attempt), or
+/// through a volume of voxel `size`.
 struct SheetPlan {
   bool fromBoundary = false;
   double size = 0.0;
+  QuadMesh boundaryMesh;
 };
 
 /// The junction nodes of a sheet's junction curves, as extraction computes them (extract.cpp).
@@ -144,8 +146,7 @@ QuadMesh meshSheets(const std::vector<Sheet>& sheets, const std::vector<SheetPla
     const ReferenceSurface original(surface);
     try {
       if (plans[k].fromBoundary) {
-        sheetMeshes.push_back(meshFromBoundary(sheets[k], surface, original, plans[k].size,
-                                               plan.targetSize, junctionSpacing));
+        sheetMeshes.push_back(plans[k].boundaryMesh);
         size = std::min(size, boundaryMeshSize(sheetMeshes.back(), plans[k].size));
       } else {
         sheetMeshes.push_back(meshThroughVolumeOrBoundary(sheets[k], surface, original,
@@ -182,15 +183,16 @@ std::vector<SheetPlan> planSheets(const std::vector<Sheet>& sheets, const PartPl
     const bool narrow =
         settings.narrowFeatureVoxels > 0 && width < settings.narrowFeatureVoxels * plan.targetSize;
     if (!narrow) {
-      plans.push_back({false, plan.targetSize});
+      plans.push_back({false, plan.targetSize, {}});
       continue;
     }
     const double spacing = std::min(plan.targetSize, 2.0 * width);
     try {
       const QuadMesh surface = sheetSurface(sheets[k]);
       const ReferenceSurface original(surface);
-      meshFromBoundary(sheets[k], surface, original, spacing, plan.targetSize, junctionSpacing);
-      plans.push_back({true, spacing});
+      plans.push_back({true, spacing,
+                       meshFromBoundary(sheets[k], surface, original, spacing, plan.targetSize,
+                                        junctionSpacing)});
       if (spacing < plan.targetSize)
         note += std::string(note.empty() ? "" : "; ") + "sheet " + std::to_string(k) + " is " +
                 formatNumber(width) + " wide: one row of elements " + formatNumber(spacing) +
@@ -198,7 +200,7 @@ std::vector<SheetPlan> planSheets(const std::vector<Sheet>& sheets, const PartPl
       continue;
     } catch (const extract::NarrowSheetRefusal& refusal) {
       const double voxel = std::max(finest, width / settings.narrowFeatureVoxels);
-      plans.push_back({false, voxel});
+      plans.push_back({false, voxel, {}});
       note += std::string(note.empty() ? "" : "; ") + "voxel reduced to " + formatNumber(voxel) +
               ": sheet " + std::to_string(k) + " is " + formatNumber(width) +
               " wide, narrower than " + formatNumber(settings.narrowFeatureVoxels) + " voxels of " +
