@@ -236,6 +236,17 @@ TEST(NarrowSheet, AFreeSideIsSpacedAgainToMatchTheSideAcross) {
   EXPECT_EQ(mesh.faces.size(), 10u);
 }
 
+TEST(NarrowSheet, AJunctionSideIsNeverSpacedAgainEvenWithoutNodesInside) {
+  // Part 1 (40 x 2.5) meets part 2 along y = 2.5, whose junction nodes are 40 apart: only its
+  // ends. The free side across gets 10 pieces at 4 mm; matching the counts must not put nodes on
+  // the junction side (part 2 has none there), so the free side is the one spaced again.
+  const FeModel model = strip(10, 2, 4.0, 2.5, 1);
+  const QuadMesh mesh = meshStrip(model, 1, 4.0, 0.1, 40.0);
+  std::size_t onJunction = 0;
+  for (const auto& p : mesh.points) onJunction += std::abs(p[1] - 2.5) < 1e-12;
+  EXPECT_EQ(onJunction, 2u);
+}
+
 TEST(NarrowSheet, ANarrowSheetAtATJunctionSharesItsNodesWithTheSheetsMeshedThroughVolumes) {
   // One part: a strip 2 mm wide (meshed from its boundary) along a plate 18 mm wide and a wall
   // 10 mm high (both through volumes), all three meeting at the line y = 2, z = 0.

@@ -201,5 +201,81 @@ TEST(Pipeline, PartsOfDifferentSizesStillShareTheirSeam) {
   EXPECT_GE(shared, 9u) << "the seam of 40 units at the smaller size, 4: about 11 nodes";
 }
 
+/// A 40 x 40 plate of 4-unit quads (part 1) and a 40 x 30 wall of 4 x 6 quads standing on its
+/// edge x = 40 (part 2): the seam is the plate's 11 nodes plateNode(10, j).
+FeModel plateAndWall() {
+  FeModel model;
+  auto plateNode = [](int i, int j) { return Id(1 + j * 11 + i); };
+  for (int j = 0; j <= 10; ++j)
+    for (int i = 0; i <= 10; ++i)
+      test::addNode(model, plateNode(i, j), 4.0 * i + 0.31, 4.0 * j + 0.17, 0.23);
+  auto wallNode = [&](int k, int j) { return k == 0 ? plateNode(10, j) : Id(1000 + j * 6 + k); };
+  for (int j = 0; j <= 10; ++j)
+    for (int k = 1; k <= 5; ++k)
+      test::addNode(model, wallNode(k, j), 40.31, 4.0 * j + 0.17, 0.23 + 6.0 * k);
+  Id shell = 1;
+  for (int j = 0; j < 10; ++j)
+    for (int i = 0; i < 10; ++i)
+      test::addShell(
+          model, shell++, 1,
+          {plateNode(i, j), plateNode(i + 1, j), plateNode(i + 1, j + 1), plateNode(i, j + 1)});
+  for (int j = 0; j < 10; ++j)
+    for (int k = 0; k < 5; ++k)
+      test::addShell(
+          model, shell++, 2,
+          {wallNode(k, j), wallNode(k, j + 1), wallNode(k + 1, j + 1), wallNode(k + 1, j)});
+  return model;
+}
+
+/// How many of the seam's original nodes (x = 40.31, z = 0.23) the shells of both parts use.
+std::size_t seamNodesShared(const FeModel& model) {
+  std::set<Id> plate, wall;
+  for (const Shell& s : model.shells)
+    for (int c = 0; c < s.nodeCount; ++c)
+      (s.part == 1 ? plate : wall).insert(s.nodes[std::size_t(c)]);
+  std::size_t shared = 0;
+  for (const Id id : plate)
+    if (wall.count(id) && id >= 11 && id <= 121 && id % 11 == 0) ++shared;
+  return shared;
+}
+
+TEST(Pipeline, APartNotRemeshedKeepsEveryNodeOfItsSeam) {
+  // Only the wall is remeshed, at 7 units: its seam to the plate, which keeps its elements, must
+  // keep all 11 of the plate's seam nodes (at 7 units the seam alone would get 6 pieces).
+  FeModel model = plateAndWall();
+  RemeshSettings settings;
+  settings.targetSize = 7.0;
+  settings.parts = {2};
+  const RemeshReport report = remeshDeck(model, settings);
+  ASSERT_EQ(report.parts.size(), 1u);
+  ASSERT_NE(report.parts[0].status, PartStatus::Kept) << report.parts[0].reason;
+  EXPECT_EQ(seamNodesShared(model), 11u);
+}
+
+TEST(Pipeline, ANeighbourOfAPartKeptAfterItsAttemptIsRemeshedAgainAlongItsSeam) {
+  // The plate also holds a Moebius strip far away, so it cannot be remeshed and is kept; the wall,
+  // remeshed in the same round with its own seam nodes, is remeshed again keeping the plate's.
+  FeModel model = plateAndWall();
+  const int n = 12;
+  auto node = [&](int r, int i) { return Id(5000 + r * n + i); };
+  for (int r = 0; r <= 1; ++r)
+    for (int i = 0; i < n; ++i) {
+      const double t = 2 * M_PI * i / n, w = -1.0 + 2.0 * r;
+      const double radius = 5.0 + w * std::cos(t / 2);
+      test::addNode(model, node(r, i), radius * std::cos(t) - 100.0, radius * std::sin(t),
+                    w * std::sin(t / 2));
+    }
+  for (int i = 0; i + 1 < n; ++i)
+    test::addShell(model, 6000 + i, 1, {node(0, i), node(0, i + 1), node(1, i + 1), node(1, i)});
+  test::addShell(model, 6000 + n, 1, {node(0, n - 1), node(1, 0), node(0, 0), node(1, n - 1)});
+  RemeshSettings settings;
+  settings.targetSize = 7.0;
+  const RemeshReport report = remeshDeck(model, settings);
+  ASSERT_EQ(report.parts.size(), 2u);
+  EXPECT_EQ(report.parts[0].status, PartStatus::Kept);
+  ASSERT_NE(report.parts[1].status, PartStatus::Kept) << report.parts[1].reason;
+  EXPECT_EQ(seamNodesShared(model), 11u);
+}
+
 }  // namespace
 }  // namespace voxremesh

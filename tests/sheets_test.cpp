@@ -820,6 +820,34 @@ TEST(Sheets, PartsSharingARowOfNodesHaveTheSeamAsAJunctionCurve) {
   EXPECT_TRUE(buildSheets(m, 77).empty());
 }
 
+TEST(Sheets, JunctionCurvesEndWhereTheSeamChangesItsPartner) {
+  // Part 1, a 5 x 2 plate; part 2 bends up from nodes 13..15 of its row j = 2, part 3 bends down
+  // from nodes 15..18. At node 15 the seam changes partner: part 1's curve must end there, as the
+  // curves of parts 2 and 3 do, so that every side samples the same pieces.
+  FeModel m;
+  addSheet(m, 1, 1, 5, 2, [](int i, int j) { return Vec3{double(i), double(j), 0.0}; });
+  auto up = [](int i) { return Id(100 + i); };
+  auto down = [](int i) { return Id(200 + i); };
+  for (int i = 0; i <= 2; ++i) addNode(m, up(i), i, 2.0, 1.0);
+  for (int i = 2; i <= 5; ++i) addNode(m, down(i), i, 2.0, -1.0);
+  for (int i = 0; i < 2; ++i)
+    addShell(m, nextShellId(m), 2, {Id(13 + i), Id(14 + i), up(i + 1), up(i)});
+  for (int i = 2; i < 5; ++i)
+    addShell(m, nextShellId(m), 3, {Id(13 + i), Id(14 + i), down(i + 1), down(i)});
+  const std::vector<Sheet> plate = buildSheets(m, 1);
+  ASSERT_EQ(plate.size(), 1u);
+  ASSERT_EQ(plate[0].junctionCurves.size(), 2u);
+  expectSameLine(nodeIds(plate[0], plate[0].junctionCurves[0]), {13, 14, 15});
+  expectSameLine(nodeIds(plate[0], plate[0].junctionCurves[1]), {15, 16, 17, 18});
+  for (const Id part : {2, 3}) {
+    const std::vector<Sheet> other = buildSheets(m, part);
+    ASSERT_EQ(other.size(), 1u);
+    ASSERT_EQ(other[0].junctionCurves.size(), 1u);
+    expectSameLine(nodeIds(other[0], other[0].junctionCurves[0]),
+                   part == 2 ? std::vector<Id>{13, 14, 15} : std::vector<Id>{15, 16, 17, 18});
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Settings, determinism, robustness
 

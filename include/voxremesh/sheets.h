@@ -78,6 +78,9 @@ constexpr PointIndex kNoPoint = std::numeric_limits<PointIndex>::max();
 struct Polyline {
   std::vector<PointIndex> points;
   bool closed = false;
+  /// Junction curves only: every point stays a node and none is added between them (the seam to
+  /// a part that keeps its elements).
+  bool keepPoints = false;
 };
 
 /// One manifold, consistently oriented sheet (with boundary) of a part.

@@ -95,6 +95,7 @@ struct VolumeInfo {
 struct VolumeCurve {
   std::vector<std::array<double, 3>> points;
   bool closed = false;
+  bool keepPoints = false;  ///< junction curves: see Polyline::keepPoints (sheets.h)
 };
 
 /// The volume of one part: the grids (behind a handle) plus the curves of its sheets.

@@ -118,8 +118,15 @@ void addFarPoints(const Walk& walk, const CurveNode& x, const CurveNode& y, doub
 }
 
 /// The nodes of one curve in canonical order (closed: the first is not repeated).
-std::vector<CurveNode> sampleCurve(const Walk& walk, double spacing, double tolerance) {
+/// A curve that keeps its points (VolumeCurve::keepPoints) has every point as a node and no other.
+std::vector<CurveNode> sampleCurve(const Walk& walk, bool keepPoints, double spacing,
+                                   double tolerance) {
   const std::size_t n = walk.points.size();
+  if (keepPoints) {
+    std::vector<CurveNode> nodes;
+    for (std::size_t i = 0; i < n; ++i) nodes.push_back({walk.arc[i], i});
+    return nodes;
+  }
   std::vector<std::size_t> anchors;
   for (std::size_t i = 0; i < n; ++i) {
     const bool end = !walk.closed && (i == 0 || i + 1 == n);
@@ -162,7 +169,7 @@ JunctionNodes::JunctionNodes(const std::vector<VolumeCurve>& curves, double spac
     if (curve.points.size() < 2) continue;
     const std::vector<Point3> points = canonicalPoints(curve);
     const Walk walk(points, curve.closed);
-    const std::vector<CurveNode> nodes = sampleCurve(walk, spacing, tolerance);
+    const std::vector<CurveNode> nodes = sampleCurve(walk, curve.keepPoints, spacing, tolerance);
     const std::size_t segments = walk.arc.size() - 1;
     std::vector<JunctionEdgeNodes> perEdge(segments);
     for (std::size_t s = 0; s < segments; ++s) perEdge[s].from = walk.at(s);

@@ -13,6 +13,8 @@
 //   arc length; where the chord between two nodes misses a curve point by more than `tolerance`,
 //   that point becomes a node too (farthest first, recursively, as Douglas-Peucker).
 // - A node at a curve point takes its exact coordinates.
+// - A curve that keeps its points (the seam to a part that keeps its elements) has every point as
+//   a node and no other.
 #pragma once
 
 #include <array>

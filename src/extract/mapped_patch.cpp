@@ -31,10 +31,11 @@ std::vector<std::size_t> turningNodes(const std::vector<LoopNode>& nodes) {
 /// One side of the patch: its nodes from one corner to the next, both included.
 using Side = std::vector<LoopNode>;
 
-/// True when no inner node of the side is prescribed (all have role Boundary).
+/// True when no inner node of the side is prescribed (all have role Boundary) and no stretch of
+/// it is fixed.
 bool movable(const Side& side) {
-  for (std::size_t k = 1; k + 1 < side.size(); ++k)
-    if (side[k].role != PointRole::Boundary) return false;
+  for (std::size_t k = 0; k + 1 < side.size(); ++k)
+    if ((k > 0 && side[k].role != PointRole::Boundary) || side[k].fixedAfter) return false;
   return true;
 }
 

@@ -21,6 +21,9 @@ struct LoopNode {
   double param = 0.0;
   std::array<double, 3> point{};
   PointRole role = PointRole::Boundary;
+  /// The stretch to the next node runs along a junction curve between two of its nodes: no node
+  /// may be put into it (the neighbour across the junction has none there).
+  bool fixedAfter = false;
 };
 
 /// The grid of mappedPatch: the loop's nodes (a side may have been spaced again), the nodes
@@ -36,9 +39,9 @@ using NormalAt = std::function<std::array<double, 3>(const std::array<double, 3>
 
 /// Meshes a patch as a grid when its loop turns by more than 45 degrees at exactly four of its
 /// nodes, and opposite sides have as many pieces, or can get as many: a side whose inner nodes all
-/// have role Boundary is spaced again evenly with the count of the side opposite (prescribed
-/// junction nodes are never moved). Inner nodes are interpolated from the four sides and laid on
-/// the surface.
+/// have role Boundary and that has no fixed stretch (LoopNode::fixedAfter) is spaced again evenly
+/// with the count of the side opposite (junction nodes are never moved or added). Inner nodes are
+/// interpolated from the four sides and laid on the surface.
 /// @param loop       the patch's loop (closed)
 /// @param nodes      the nodes on it, ascending arc length, at least 4
 /// @param reference  the surface the inner nodes are laid on

@@ -210,6 +210,7 @@ std::vector<LoopNode> loopNodes(const std::vector<Vec3>& points, const std::vect
   std::vector<LoopNode> nodes =
       fillFreeGaps(walk, anchorNodes(walk, points, corner, junctions), spacing, reach, across);
   addFarPointsAndEvenCount(walk, nodes, tolerance);
+  for (std::size_t j = 0; j < nodes.size(); ++j) nodes[j].fixedAfter = !walk.free(nodes, j);
   return nodes;
 }
 

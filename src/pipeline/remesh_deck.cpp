@@ -105,6 +105,35 @@ std::vector<std::size_t> shellsOnSolids(const FeModel& deck, const std::vector<P
   return count;
 }
 
+/// The parts with shells that `plans` leaves out (ascending IDs): they keep their elements.
+std::vector<Id> unplannedParts(const FeModel& deck, const std::vector<PartPlan>& plans) {
+  std::vector<Id> planned;
+  for (const PartPlan& plan : plans) planned.push_back(plan.part);
+  std::sort(planned.begin(), planned.end());
+  std::vector<Id> result;
+  for (const Id part : shellPartIds(deck))
+    if (!std::binary_search(planned.begin(), planned.end(), part)) result.push_back(part);
+  return result;
+}
+
+/// The plans (ascending indices) not kept in `report` whose part model holds a shell of a part of
+/// `newlyKept` (a neighbour sharing nodes): their seams along those parts must keep its nodes.
+std::vector<std::size_t> neighboursToRedo(const std::vector<FeModel>& models,
+                                          const RemeshReport& report, std::vector<Id> newlyKept) {
+  std::sort(newlyKept.begin(), newlyKept.end());
+  std::vector<std::size_t> redo;
+  if (newlyKept.empty()) return redo;
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    if (report.parts[i].status == PartStatus::Kept) continue;
+    const bool touches =
+        std::any_of(models[i].shells.begin(), models[i].shells.end(), [&](const Shell& shell) {
+          return std::binary_search(newlyKept.begin(), newlyKept.end(), shell.part);
+        });
+    if (touches) redo.push_back(i);
+  }
+  return redo;
+}
+
 }  // namespace
 
 const char* partStatusName(PartStatus status) {
@@ -145,21 +174,41 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
   const int threads =
       settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t(0), plans.size(), [&](std::size_t i) {
-      if (onSolids[i] > 0) {
-        RemeshedPart& part = report.parts[i];
-        part.plan = plans[i];
-        part.reason = std::to_string(onSolids[i]) + " of its " + std::to_string(plans[i].shells) +
-                      " shells lie on faces of solid elements (remeshing would detach them)";
-      } else {
+  // Parts that keep their elements from the start: those not planned and those on solids.
+  std::vector<Id> kept = unplannedParts(deck, plans);
+  std::vector<std::size_t> todo;
+  for (std::size_t i = 0; i < plans.size(); ++i) {
+    if (onSolids[i] == 0) {
+      todo.push_back(i);
+      continue;
+    }
+    RemeshedPart& part = report.parts[i];
+    part.plan = plans[i];
+    part.reason = std::to_string(onSolids[i]) + " of its " + std::to_string(plans[i].shells) +
+                  " shells lie on faces of solid elements (remeshing would detach them)";
+    kept.push_back(plans[i].part);
+    tell("extract", plans[i].part, true);
+  }
+  std::sort(kept.begin(), kept.end());
+  // Rounds: the parts to do are remeshed with the seams along kept parts keeping their nodes;
+  // a neighbour of a part kept in this round is done again in the next.
+  for (bool first = true; !todo.empty(); first = false) {
+    arena.execute([&] {
+      tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t t) {
+        const std::size_t i = todo[t];
         report.parts[i] =
-            pipeline::remeshPart(models[i], plans[i], settings, junctionSpacing[i], meshes[i],
+            pipeline::remeshPart(models[i], plans[i], settings, junctionSpacing[i], kept, meshes[i],
                                  [&](const char* stage) { tell(stage, plans[i].part, false); });
-      }
-      tell("extract", plans[i].part, true);
+        if (first) tell("extract", plans[i].part, true);
+      });
     });
-  });
+    std::vector<Id> newlyKept;
+    for (const std::size_t i : todo)
+      if (report.parts[i].status == PartStatus::Kept) newlyKept.push_back(plans[i].part);
+    todo = neighboursToRedo(models, report, newlyKept);
+    kept.insert(kept.end(), newlyKept.begin(), newlyKept.end());
+    std::sort(kept.begin(), kept.end());
+  }
   std::vector<QuadMesh> accepted;
   for (std::size_t i = 0; i < plans.size(); ++i)
     if (report.parts[i].status != PartStatus::Kept) accepted.push_back(std::move(meshes[i]));

@@ -6,6 +6,7 @@
 #include <limits>
 #include <new>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "extract/narrow_sheet.h"
@@ -40,10 +41,41 @@ extract::JunctionNodes sheetJunctionNodes(const Sheet& sheet, double spacing) {
   for (const Polyline& curve : sheet.junctionCurves) {
     VolumeCurve world;
     world.closed = curve.closed;
+    world.keepPoints = curve.keepPoints;
     for (const PointIndex p : curve.points) world.points.push_back(sheet.points[p]);
     curves.push_back(std::move(world));
   }
   return extract::JunctionNodes(curves, spacing, 0.2 * spacing);
+}
+
+/// Marks the junction curves of `sheets` that run along a part of `keptParts` (ascending IDs): an
+/// edge whose two nodes are both used by one kept part's shells of `model`. Every point of such a
+/// curve stays a node (Polyline::keepPoints), so that the seam keeps the kept part's nodes.
+void markKeptSeams(std::vector<Sheet>& sheets, const FeModel& model,
+                   const std::vector<Id>& keptParts) {
+  if (keptParts.empty()) return;
+  std::unordered_map<Id, std::vector<Id>> keptPartsOfNode;
+  for (const Shell& shell : model.shells) {
+    if (!std::binary_search(keptParts.begin(), keptParts.end(), shell.part)) continue;
+    for (int c = 0; c < shell.nodeCount; ++c) {
+      std::vector<Id>& list = keptPartsOfNode[shell.nodes[static_cast<std::size_t>(c)]];
+      if (std::find(list.begin(), list.end(), shell.part) == list.end()) list.push_back(shell.part);
+    }
+  }
+  const auto alongKeptPart = [&](Id a, Id b) {
+    const auto x = keptPartsOfNode.find(a), y = keptPartsOfNode.find(b);
+    if (x == keptPartsOfNode.end() || y == keptPartsOfNode.end()) return false;
+    for (const Id part : x->second)
+      if (std::find(y->second.begin(), y->second.end(), part) != y->second.end()) return true;
+    return false;
+  };
+  for (Sheet& sheet : sheets)
+    for (Polyline& curve : sheet.junctionCurves) {
+      const std::size_t n = curve.points.size();
+      for (std::size_t i = 0; i + 1 < n + (curve.closed ? 1 : 0) && !curve.keepPoints; ++i)
+        curve.keepPoints = alongKeptPart(sheet.pointNodeIds[curve.points[i]],
+                                         sheet.pointNodeIds[curve.points[(i + 1) % n]]);
+    }
 }
 
 /// One sheet's mesh from its boundary alone (narrow_sheet.h), nodes `spacing` apart along it.
@@ -214,7 +246,8 @@ std::vector<SheetPlan> planSheets(const std::vector<Sheet>& sheets, const PartPl
 }  // namespace
 
 RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const RemeshSettings& settings,
-                        double junctionSpacing, QuadMesh& mesh, const StageCallback& stage) {
+                        double junctionSpacing, const std::vector<Id>& keptParts, QuadMesh& mesh,
+                        const StageCallback& stage) {
   RemeshedPart part;
   part.plan = plan;
   part.status = PartStatus::Kept;
@@ -222,6 +255,7 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
   std::vector<Sheet> sheets;
   try {
     sheets = buildSheets(model, plan.part, settings.sheets);
+    markKeptSeams(sheets, model, keptParts);
   } catch (const std::bad_alloc&) {
     part.reason = "out of memory while splitting it into sheets";
     return part;

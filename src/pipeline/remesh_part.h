@@ -56,8 +56,11 @@ using StageCallback = std::function<void(const char* stage)>;
 /// @param model            the part's shells and the shells sharing nodes with them
 /// @param plan             the part
 /// @param junctionSpacing  the node spacing on the part's junction curves
+/// @param keptParts        parts (ascending IDs) that keep their elements: the seams along them
+///                         keep their nodes (every node of the seam, none added)
 /// @param mesh             receives the accepted mesh (cleared when the part is kept)
 RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const RemeshSettings& settings,
-                        double junctionSpacing, QuadMesh& mesh, const StageCallback& stage);
+                        double junctionSpacing, const std::vector<Id>& keptParts, QuadMesh& mesh,
+                        const StageCallback& stage);
 
 }  // namespace voxremesh::pipeline

@@ -60,10 +60,21 @@ struct ModelContext {
   /// vectors are empty when no node is shared.
   std::vector<Index> sharedBegin;
   std::vector<Index> sharedParts;
+  std::vector<Index> shellEntry;  ///< per model shell: its part entry
+  /// The shells using node v (model node index) are shellsAt[shellsBegin[v] .. shellsBegin[v+1]).
+  std::vector<Index> shellsBegin;
+  std::vector<Index> shellsAt;
 
   /// Nodes u and v (model node indices) are both used by shells of one part entry other than
   /// `part`.
   bool sharedWithOtherPart(Index u, Index v, Index part) const;
+
+  /// True when junction curves must end at node v (model node index), whichever part or sheet
+  /// they are found from: the model's seam edges at v (edges of three or more shells, or of
+  /// shells of two or more parts) are not exactly two, or the two are edges of different sets of
+  /// parts. Every part meeting at v then cuts its curves there, so that both sides of a seam
+  /// sample the same pieces between the same ends.
+  bool seamStop(Index v) const;
 };
 
 /// Builds the context of `model`. Throws std::invalid_argument as model::shellCorners does.

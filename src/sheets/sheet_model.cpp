@@ -28,8 +28,41 @@ bool ModelContext::sharedWithOtherPart(Index u, Index v, Index part) const {
   return false;
 }
 
+bool ModelContext::seamStop(Index v) const {
+  // The edges at v: the other node, how many shells have the edge, and their part entries.
+  struct EdgeAtNode {
+    Index other;
+    Index shells = 0;
+    std::vector<Index> entries;
+  };
+  std::vector<EdgeAtNode> edges;
+  for (Index i = shellsBegin[v]; i < shellsBegin[v + 1]; ++i) {
+    const Index s = shellsAt[i];
+    const ShellCorners& c = corners[s];
+    for (unsigned k = 0; k < c.count; ++k) {
+      if (c.node[k] != v) continue;
+      for (const Index other : {c.node[(k + 1) % c.count], c.node[(k + c.count - 1) % c.count]}) {
+        if (other == v) continue;
+        auto it = std::find_if(edges.begin(), edges.end(),
+                               [&](const EdgeAtNode& e) { return e.other == other; });
+        if (it == edges.end()) it = edges.insert(edges.end(), EdgeAtNode{other, 0, {}});
+        ++it->shells;
+        if (std::find(it->entries.begin(), it->entries.end(), shellEntry[s]) == it->entries.end())
+          it->entries.push_back(shellEntry[s]);
+      }
+    }
+  }
+  std::vector<const EdgeAtNode*> seams;
+  for (EdgeAtNode& e : edges) {
+    if (e.shells < 3 && e.entries.size() < 2) continue;
+    std::sort(e.entries.begin(), e.entries.end());
+    seams.push_back(&e);
+  }
+  return seams.size() != 2 || seams[0]->entries != seams[1]->entries;
+}
+
 ModelContext makeModelContext(const FeModel& model) {
-  ModelContext context{model, model::shellCorners(model), {}, {}, {}, {}, {}};
+  ModelContext context{model, model::shellCorners(model), {}, {}, {}, {}, {}, {}, {}, {}};
 
   // Entries: the model's parts in order, then undefined parts named by shells, ascending; parts
   // without shells are dropped afterwards.
@@ -74,6 +107,22 @@ ModelContext makeModelContext(const FeModel& model) {
     context.partShells.push_back(std::move(shells[e]));
   }
   for (Index& entry : entryOfShell) entry = compact[entry];
+  context.shellEntry = entryOfShell;
+
+  // The shells at each node (CSR).
+  context.shellsBegin.assign(model.nodes.size() + 1, 0);
+  for (const ShellCorners& c : context.corners)
+    for (unsigned k = 0; k < c.count; ++k) ++context.shellsBegin[c.node[k] + 1];
+  for (std::size_t v = 0; v < model.nodes.size(); ++v)
+    context.shellsBegin[v + 1] += context.shellsBegin[v];
+  context.shellsAt.resize(context.shellsBegin.back());
+  {
+    std::vector<Index> fill(context.shellsBegin.begin(), context.shellsBegin.end() - 1);
+    for (std::size_t s = 0; s < model.shells.size(); ++s) {
+      const ShellCorners& c = context.corners[s];
+      for (unsigned k = 0; k < c.count; ++k) context.shellsAt[fill[c.node[k]]++] = Index(s);
+    }
+  }
 
   // Nodes used by several parts: first mark them, then list their parts.
   std::vector<Index> firstEntry(model.nodes.size(), kNoIndex);

@@ -75,6 +75,7 @@ namespace {
 VolumeCurve toWorld(const Sheet& sheet, const Polyline& line) {
   VolumeCurve curve;
   curve.closed = line.closed;
+  curve.keepPoints = line.keepPoints;
   curve.points.reserve(line.points.size());
   for (PointIndex p : line.points) {
     if (p >= sheet.points.size()) {

@@ -5,8 +5,8 @@
 //   voxremesh_invalid_angle_deg (double), voxremesh_tie_tolerance_voxels (double),
 //   voxremesh_source_file (string), voxremesh_part_id (int64),
 //   voxremesh_feature_lines, voxremesh_boundary_loops, voxremesh_junction_curves (string: one
-//   curve per line, "closed|open x y z x y z ..."), voxremesh_feature_points (string: one
-//   "x y z" per line).
+//   curve per line, "closed|open x y z x y z ..."; "closed-kept|open-kept" for a junction curve
+//   whose points all stay nodes), voxremesh_feature_points (string: one "x y z" per line).
 #include "volume/volume_meta.h"
 
 #include <cstdio>
@@ -42,6 +42,7 @@ std::string encodeCurves(const std::vector<VolumeCurve>& curves) {
   std::string out;
   for (const VolumeCurve& curve : curves) {
     out += curve.closed ? "closed" : "open";
+    if (curve.keepPoints) out += "-kept";
     for (const auto& p : curve.points) appendPoint(out, p);
     out += '\n';
   }
@@ -92,6 +93,11 @@ std::vector<VolumeCurve> decodeCurves(const std::string& text, const std::string
     } else if (line.rfind("open", 0) == 0) {
       skip = 4;
     } else {
+      skip = std::string::npos;
+    }
+    if (skip != std::string::npos && line.compare(skip, 5, "-kept") == 0)
+      curve.keepPoints = true, skip += 5;
+    if (skip == std::string::npos) {
       throw InputError(file, 0, "metadata " + key + " holds a malformed curve");
     }
     if (!parsePoints(line.data() + skip, line.data() + line.size(), curve.points)) {
