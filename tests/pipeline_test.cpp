@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <set>
 #include <string>
+#include <unordered_map>
 
 #include "support/test_support.h"
 #include "voxremesh/errors.h"
@@ -275,6 +276,57 @@ TEST(Pipeline, ANeighbourOfAPartKeptAfterItsAttemptIsRemeshedAgainAlongItsSeam) 
   EXPECT_EQ(report.parts[0].status, PartStatus::Kept);
   ASSERT_NE(report.parts[1].status, PartStatus::Kept) << report.parts[1].reason;
   EXPECT_EQ(seamNodesShared(model), 11u);
+}
+
+TEST(Pipeline, HardPointsKeepTheirIdAndCoordinatesAndSetsAreNoHardPoints) {
+  // A 12 x 12 plate of unit quads (node (i, j): ID 1 + 13 j + i). A mass on the inner node
+  // (5, 6) and a history node on the edge node (0, 4) are hard points; the node set of the whole
+  // plate is a region, not hard points.
+  std::string deck = "*KEYWORD\n*NODE\n";
+  char line[128];
+  for (int j = 0; j <= 12; ++j)
+    for (int i = 0; i <= 12; ++i) {
+      std::snprintf(line, sizeof line, "%8d%16.3f%16.3f%16.3f\n", 1 + 13 * j + i, 1.0 * i + 0.013,
+                    1.0 * j + 0.007, 0.0);
+      deck += line;
+    }
+  deck += "*ELEMENT_SHELL\n";
+  for (int j = 0; j < 12; ++j)
+    for (int i = 0; i < 12; ++i) {
+      const int a = 1 + 13 * j + i;
+      std::snprintf(line, sizeof line, "%8d%8d%8d%8d%8d%8d\n", 1 + 12 * j + i, 1, a, a + 1, a + 14,
+                    a + 13);
+      deck += line;
+    }
+  deck += "*SET_NODE_LIST_GENERATE\n         7\n         1       169\n";
+  deck += "*ELEMENT_MASS\n   90000      84             1.0       0\n";
+  deck += "*DATABASE_HISTORY_NODE\n      53\n*END\n";
+  const auto dir = test::scratchDir("hard_points");
+  test::writeText(dir / "in.k", deck);
+  FeModel model = readDeck(dir / "in.k");
+  const std::unordered_map<Id, std::size_t> before = model.nodeIndex();
+  const std::array<double, 3> mass = model.nodes[before.at(84)].xyz,
+                              history = model.nodes[before.at(53)].xyz;
+  RemeshSettings settings;
+  settings.targetSize = 1.7;
+  const RemeshReport report = remeshDeck(model, settings);
+  ASSERT_EQ(report.parts.size(), 1u);
+  ASSERT_NE(report.parts[0].status, PartStatus::Kept) << report.parts[0].reason;
+  EXPECT_EQ(report.assembly.hardPointsKept, 2u);
+  EXPECT_TRUE(report.assembly.remaps.empty());
+  const std::unordered_map<Id, std::size_t> after = model.nodeIndex();
+  ASSERT_TRUE(after.count(84) && after.count(53));
+  EXPECT_EQ(model.nodes[after.at(84)].xyz, mass);
+  EXPECT_EQ(model.nodes[after.at(53)].xyz, history);
+  std::size_t shellsOnHardPoints = 0, shellsOnOtherOldNodes = 0;
+  for (const Shell& shell : model.shells)
+    for (int c = 0; c < shell.nodeCount; ++c) {
+      const Id node = shell.nodes[std::size_t(c)];
+      shellsOnHardPoints += node == 84 || node == 53;
+      shellsOnOtherOldNodes += node <= 169 && node != 84 && node != 53;
+    }
+  EXPECT_GE(shellsOnHardPoints, 3u);
+  EXPECT_EQ(shellsOnOtherOldNodes, 0u) << "the set's nodes are a region: all replaced";
 }
 
 }  // namespace

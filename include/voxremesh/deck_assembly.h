@@ -15,7 +15,10 @@
 //       lowest ID when several kept-shell nodes share the coordinates), so a seam with a part
 //       that is not remeshed stays conforming; or
 //   (b) two points of meshes of different parts both have PointRole::Junction and bit-identical
-//       coordinates: the later one takes the earlier one's node.
+//       coordinates: the later one takes the earlier one's node; or
+//   (c) a point has bit-identical coordinates to a hard point (an old node that other keywords
+//       use as a point, hardPointNodes) of its part: it takes that node's ID, and the node is
+//       neither removed nor remapped, so the element, weld or load on it stays where it was.
 // - New element IDs: the faces of the meshes in mesh order, then face order, get consecutive IDs
 //   from one above the largest element ID of the deck: shells, and the first field of the data
 //   lines of verbatim element keywords (LS-DYNA *ELEMENT_..., Nastran C..., RBE..., CONM2,
@@ -106,6 +109,7 @@ struct AssemblyReport {
   std::size_t keptOldNodes = 0;          ///< old nodes kept for unmapped references
   std::size_t seamPoints = 0;            ///< points that took a kept-shell node (rule a)
   std::size_t mergedJunctionPoints = 0;  ///< points that took another mesh's node (rule b)
+  std::size_t hardPointsKept = 0;        ///< hard points that new points took (rule c)
   std::size_t newNodes = 0;
   Id firstNewNodeId = 0;     ///< 0 when no node was added
   Id firstNewElementId = 0;  ///< 0 when no element was added
@@ -117,11 +121,14 @@ struct AssemblyReport {
 ///                  ensures); modified in place
 /// @param newParts  one mesh per remeshed part, QuadMesh::part naming a part with shells in the
 ///                  model; faces in range, coordinates finite
+/// @param hardPoints  old nodes that keep their ID where a new point of their part lies exactly
+///                  on them (rule c); the others of the set are remapped like any old node
 /// @return what was replaced, remapped and what could not be remapped
 /// Throws std::invalid_argument (the model is then unchanged) when a mesh names part 0, a part
 /// without shells or a part twice, has a face corner out of range or a non-finite coordinate,
 /// or when a shell names a node the model does not define.
-AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& newParts);
+AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& newParts,
+                                 const std::unordered_set<Id>& hardPoints = {});
 
 }  // namespace voxremesh
 
@@ -133,5 +140,15 @@ namespace voxremesh {
 /// whose corners are all such nodes lies on a face of the solid mesh. Deterministic.
 std::unordered_set<Id> solidElementNodes(const FeModel& model,
                                          const std::unordered_set<Id>& candidates);
+
+/// The nodes among `candidates` that verbatim keywords use as points, in fields understood one by
+/// one (see the list at the top of the file): element ends (beams, discrete elements, masses,
+/// CBAR, CROD, CBUSH, CONM2, ...), rigid elements and constraints (RBE2, RBE3, spot welds, nodal
+/// rigid bodies, extra nodes), point loads and boundary conditions (FORCE, MOMENT, SPC, *CLOAD,
+/// *BOUNDARY...), history nodes and the points of CORD1x systems. Node sets and per-node data
+/// (*SET_NODE..., *INITIAL_..., *NSET, SET1, SPC1, ASET1, OMIT1, SUPORT1, TEMP) describe regions,
+/// not points, and ranges cannot be told apart: neither makes a hard point. Deterministic.
+std::unordered_set<Id> hardPointNodes(const FeModel& model,
+                                      const std::unordered_set<Id>& candidates);
 
 }  // namespace voxremesh

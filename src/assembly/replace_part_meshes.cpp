@@ -82,7 +82,8 @@ struct PartTemplate {
 
 }  // namespace
 
-AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& newParts) {
+AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& newParts,
+                                 const std::unordered_set<Id>& hardPoints) {
   checkMeshes(model, newParts);
   const std::unordered_map<Id, std::size_t> nodeIndex = model.nodeIndex();
   for (const Shell& shell : model.shells)
@@ -150,6 +151,16 @@ AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& ne
     const auto [it, inserted] = keptAt.emplace(PointBits(node.xyz), node.id);
     if (!inserted && node.id < it->second) it->second = node.id;
   }
+  // Rule (c): the hard points among the old nodes, by position, with the meshes of their parts.
+  std::unordered_map<PointBits, std::pair<Id, std::vector<std::size_t>>, PointBitsHash> hardAt;
+  for (const Node& node : model.nodes) {
+    if (!hardPoints.count(node.id) || !oldNodes.count(node.id)) continue;
+    const auto [it, inserted] =
+        hardAt.emplace(PointBits(node.xyz), std::make_pair(node.id, meshesOfOldNode.at(node.id)));
+    if (!inserted && node.id < it->second.first)
+      it->second = std::make_pair(node.id, meshesOfOldNode.at(node.id));
+  }
+  std::unordered_set<Id> hardKept;
   std::unordered_map<PointBits, std::pair<Id, std::size_t>, PointBitsHash> junctionAt;
   std::vector<std::vector<Id>> pointIds(newParts.size());
   std::vector<Node> addedNodes;
@@ -163,6 +174,14 @@ AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& ne
         pointIds[m][p] = kept->second;
         ++report.seamPoints;
         continue;
+      }
+      if (const auto hard = hardAt.find(key); hard != hardAt.end()) {
+        const std::vector<std::size_t>& meshes = hard->second.second;
+        if (std::find(meshes.begin(), meshes.end(), m) != meshes.end()) {
+          pointIds[m][p] = hard->second.first;
+          hardKept.insert(hard->second.first);
+          continue;
+        }
       }
       const bool junction =
           !mesh.constraints.empty() && mesh.constraints[p].role == PointRole::Junction;
@@ -181,6 +200,8 @@ AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& ne
     }
   }
   report.newNodes = addedNodes.size();
+  report.hardPointsKept = hardKept.size();
+  for (const Id node : hardKept) oldNodes.erase(node);
   if (!addedNodes.empty()) report.firstNewNodeId = maxNode + 1;
 
   // Node references of the verbatim keywords: rewrite, or report and keep the node.

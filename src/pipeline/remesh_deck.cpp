@@ -105,6 +105,28 @@ std::vector<std::size_t> shellsOnSolids(const FeModel& deck, const std::vector<P
   return count;
 }
 
+/// Per plan, the nodes of its part's shells that other keywords use as points (hardPointNodes).
+std::vector<std::unordered_set<Id>> partHardPoints(const FeModel& deck,
+                                                   const std::vector<PartPlan>& plans) {
+  std::unordered_map<Id, std::size_t> planOf;
+  for (std::size_t i = 0; i < plans.size(); ++i) planOf[plans[i].part] = i;
+  std::unordered_set<Id> nodes;
+  for (const Shell& shell : deck.shells)
+    if (planOf.count(shell.part))
+      for (int c = 0; c < shell.nodeCount; ++c) nodes.insert(shell.nodes[std::size_t(c)]);
+  const std::unordered_set<Id> hard = hardPointNodes(deck, nodes);
+  std::vector<std::unordered_set<Id>> result(plans.size());
+  if (hard.empty()) return result;
+  for (const Shell& shell : deck.shells) {
+    const auto it = planOf.find(shell.part);
+    if (it == planOf.end()) continue;
+    for (int c = 0; c < shell.nodeCount; ++c)
+      if (hard.count(shell.nodes[std::size_t(c)]))
+        result[it->second].insert(shell.nodes[std::size_t(c)]);
+  }
+  return result;
+}
+
 /// The parts with shells that `plans` leaves out (ascending IDs): they keep their elements.
 std::vector<Id> unplannedParts(const FeModel& deck, const std::vector<PartPlan>& plans) {
   std::vector<Id> planned;
@@ -192,12 +214,14 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
   std::sort(kept.begin(), kept.end());
   // Rounds: the parts to do are remeshed with the seams along kept parts keeping their nodes;
   // a neighbour of a part kept in this round is done again in the next.
+  const std::vector<std::unordered_set<Id>> hardPoints = partHardPoints(deck, plans);
   for (bool first = true; !todo.empty(); first = false) {
     arena.execute([&] {
       tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t t) {
         const std::size_t i = todo[t];
+        const pipeline::PartSurroundings surroundings{junctionSpacing[i], kept, hardPoints[i]};
         report.parts[i] =
-            pipeline::remeshPart(models[i], plans[i], settings, junctionSpacing[i], kept, meshes[i],
+            pipeline::remeshPart(models[i], plans[i], settings, surroundings, meshes[i],
                                  [&](const char* stage) { tell(stage, plans[i].part, false); });
         if (first) tell("extract", plans[i].part, true);
       });
@@ -214,7 +238,10 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
     if (report.parts[i].status != PartStatus::Kept) accepted.push_back(std::move(meshes[i]));
   if (progress) progress("assemble", 0, 1.0);
   const auto assemblyStart = std::chrono::steady_clock::now();
-  report.assembly = replacePartMeshes(deck, accepted);
+  std::unordered_set<Id> allHardPoints;
+  for (const std::unordered_set<Id>& part : hardPoints)
+    allHardPoints.insert(part.begin(), part.end());
+  report.assembly = replacePartMeshes(deck, accepted, allHardPoints);
   report.assemblySeconds = since(assemblyStart);
   report.totalSeconds = since(start);
   return report;
@@ -277,8 +304,9 @@ std::string remeshReportJson(const RemeshReport& report) {
   }
   std::snprintf(
       buffer, sizeof buffer,
-      "\n  ],\n  \"removed_nodes\": %zu,\n  \"new_nodes\": %zu,\n  \"seconds\": %.6f\n}\n",
-      assembly.removedNodes, assembly.newNodes, report.totalSeconds);
+      "\n  ],\n  \"removed_nodes\": %zu,\n  \"new_nodes\": %zu,\n  \"hard_points_kept\": %zu,\n"
+      "  \"seconds\": %.6f\n}\n",
+      assembly.removedNodes, assembly.newNodes, assembly.hardPointsKept, report.totalSeconds);
   return out + buffer;
 }
 

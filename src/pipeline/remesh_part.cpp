@@ -35,6 +35,9 @@ struct SheetPlan {
   QuadMesh boundaryMesh;
 };
 
+/// What the sheets of one part must keep: per sheet, the hard points inside it (placeHardPoints).
+using SheetHardPoints = std::vector<std::vector<Point3>>;
+
 /// The junction nodes of a sheet's junction curves, as extraction computes them (extract.cpp).
 extract::JunctionNodes sheetJunctionNodes(const Sheet& sheet, double spacing) {
   std::vector<VolumeCurve> curves;
@@ -48,41 +51,15 @@ extract::JunctionNodes sheetJunctionNodes(const Sheet& sheet, double spacing) {
   return extract::JunctionNodes(curves, spacing, 0.2 * spacing);
 }
 
-/// Marks the junction curves of `sheets` that run along a part of `keptParts` (ascending IDs): an
-/// edge whose two nodes are both used by one kept part's shells of `model`. Every point of such a
-/// curve stays a node (Polyline::keepPoints), so that the seam keeps the kept part's nodes.
-void markKeptSeams(std::vector<Sheet>& sheets, const FeModel& model,
-                   const std::vector<Id>& keptParts) {
-  if (keptParts.empty()) return;
-  std::unordered_map<Id, std::vector<Id>> keptPartsOfNode;
-  for (const Shell& shell : model.shells) {
-    if (!std::binary_search(keptParts.begin(), keptParts.end(), shell.part)) continue;
-    for (int c = 0; c < shell.nodeCount; ++c) {
-      std::vector<Id>& list = keptPartsOfNode[shell.nodes[static_cast<std::size_t>(c)]];
-      if (std::find(list.begin(), list.end(), shell.part) == list.end()) list.push_back(shell.part);
-    }
-  }
-  const auto alongKeptPart = [&](Id a, Id b) {
-    const auto x = keptPartsOfNode.find(a), y = keptPartsOfNode.find(b);
-    if (x == keptPartsOfNode.end() || y == keptPartsOfNode.end()) return false;
-    for (const Id part : x->second)
-      if (std::find(y->second.begin(), y->second.end(), part) != y->second.end()) return true;
-    return false;
-  };
-  for (Sheet& sheet : sheets)
-    for (Polyline& curve : sheet.junctionCurves) {
-      const std::size_t n = curve.points.size();
-      for (std::size_t i = 0; i + 1 < n + (curve.closed ? 1 : 0) && !curve.keepPoints; ++i)
-        curve.keepPoints = alongKeptPart(sheet.pointNodeIds[curve.points[i]],
-                                         sheet.pointNodeIds[curve.points[(i + 1) % n]]);
-    }
-}
-
 /// One sheet's mesh from its boundary alone (narrow_sheet.h), nodes `spacing` apart along it.
-/// Throws extract::NarrowSheetRefusal when the sheet cannot be meshed so.
+/// Throws extract::NarrowSheetRefusal when the sheet cannot be meshed so, or has hard points
+/// inside it (a mesh of its boundary alone has no node there).
 QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
                           const ReferenceSurface& original, double spacing, double targetSize,
-                          double junctionSpacing) {
+                          double junctionSpacing, const std::vector<Point3>& hardPoints) {
+  if (!hardPoints.empty())
+    throw extract::NarrowSheetRefusal(std::to_string(hardPoints.size()) +
+                                      " hard points lie inside it (nodes other keywords use)");
   extract::NarrowSheetSettings narrow;
   narrow.spacing = spacing;
   narrow.tolerance = kNarrowChordShare * targetSize;
@@ -91,10 +68,12 @@ QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
                                   sheetJunctionNodes(sheet, junctionSpacing), narrow);
 }
 
-/// One sheet's mesh through a volume of the given voxel size, extracted and optimised.
+/// One sheet's mesh through a volume of the given voxel size, extracted, with the hard points
+/// inside the sheet snapped to, and optimised.
 QuadMesh meshThroughVolume(const Sheet& sheet, const ReferenceSurface& original, double voxel,
                            const RemeshSettings& settings, double junctionSpacing,
-                           RemeshedPart& part, const StageCallback& stage) {
+                           const std::vector<Point3>& hardPoints, RemeshedPart& part,
+                           const StageCallback& stage) {
   VolumeSettings volumeSettings = settings.volume;
   volumeSettings.rule = VoxelSizeRule::TargetElementSize;
   volumeSettings.targetElementSize = voxel;
@@ -108,6 +87,7 @@ QuadMesh meshThroughVolume(const Sheet& sheet, const ReferenceSurface& original,
   start = std::chrono::steady_clock::now();
   ExtractStats stats;
   QuadMesh mesh = extractQuadMesh(volume, extractSettings, &stats);
+  snapHardPoints(mesh, hardPoints);
   addExtractStats(part.extract, stats);
   part.extractSeconds += since(start);
   if (settings.optimize) {
@@ -138,11 +118,11 @@ double boundaryMeshSize(const QuadMesh& mesh, double spacing) {
 QuadMesh meshThroughVolumeOrBoundary(const Sheet& sheet, const QuadMesh& surface,
                                      const ReferenceSurface& original, double voxel,
                                      const PartPlan& plan, const RemeshSettings& settings,
-                                     double junctionSpacing, RemeshedPart& part, double& size,
-                                     const StageCallback& stage) {
+                                     double junctionSpacing, const std::vector<Point3>& hardPoints,
+                                     RemeshedPart& part, double& size, const StageCallback& stage) {
   try {
-    QuadMesh mesh =
-        meshThroughVolume(sheet, original, voxel, settings, junctionSpacing, part, stage);
+    QuadMesh mesh = meshThroughVolume(sheet, original, voxel, settings, junctionSpacing, hardPoints,
+                                      part, stage);
     size = std::min(size, voxel);
     return mesh;
   } catch (const SettingError&) {
@@ -150,8 +130,8 @@ QuadMesh meshThroughVolumeOrBoundary(const Sheet& sheet, const QuadMesh& surface
   } catch (const std::runtime_error& error) {
     const double spacing = std::min(voxel, 2.0 * sheetWidth(sheet));
     try {
-      QuadMesh mesh =
-          meshFromBoundary(sheet, surface, original, spacing, plan.targetSize, junctionSpacing);
+      QuadMesh mesh = meshFromBoundary(sheet, surface, original, spacing, plan.targetSize,
+                                       junctionSpacing, hardPoints);
       size = std::min(size, boundaryMeshSize(mesh, spacing));
       return mesh;
     } catch (const extract::NarrowSheetRefusal& refusal) {
@@ -166,9 +146,9 @@ QuadMesh meshThroughVolumeOrBoundary(const Sheet& sheet, const QuadMesh& surface
 /// `folded`; `size` receives the element size to judge it against (the smallest any sheet
 /// used: a voxel, or boundaryMeshSize).
 QuadMesh meshSheets(const std::vector<Sheet>& sheets, const std::vector<SheetPlan>& plans,
-                    const PartPlan& plan, const RemeshSettings& settings, double junctionSpacing,
-                    RemeshedPart& part, std::vector<std::uint8_t>& folded, double& size,
-                    const StageCallback& stage) {
+                    const SheetHardPoints& hardPoints, const PartPlan& plan,
+                    const RemeshSettings& settings, double junctionSpacing, RemeshedPart& part,
+                    std::vector<std::uint8_t>& folded, double& size, const StageCallback& stage) {
   std::vector<QuadMesh> sheetMeshes;
   folded.clear();
   size = std::numeric_limits<double>::infinity();
@@ -181,9 +161,9 @@ QuadMesh meshSheets(const std::vector<Sheet>& sheets, const std::vector<SheetPla
         sheetMeshes.push_back(plans[k].boundaryMesh);
         size = std::min(size, boundaryMeshSize(sheetMeshes.back(), plans[k].size));
       } else {
-        sheetMeshes.push_back(meshThroughVolumeOrBoundary(sheets[k], surface, original,
-                                                          plans[k].size, plan, settings,
-                                                          junctionSpacing, part, size, stage));
+        sheetMeshes.push_back(
+            meshThroughVolumeOrBoundary(sheets[k], surface, original, plans[k].size, plan, settings,
+                                        junctionSpacing, hardPoints[k], part, size, stage));
       }
     } catch (const SettingError&) {
       throw;
@@ -205,7 +185,8 @@ QuadMesh meshSheets(const std::vector<Sheet>& sheets, const std::vector<SheetPla
 /// through a volume with a voxel narrowFeatureVoxels times finer than its width (never below the
 /// finest voxel); other sheets through a volume at the target size. `note` receives the
 /// reductions in words.
-std::vector<SheetPlan> planSheets(const std::vector<Sheet>& sheets, const PartPlan& plan,
+std::vector<SheetPlan> planSheets(const std::vector<Sheet>& sheets,
+                                  const SheetHardPoints& hardPoints, const PartPlan& plan,
                                   const RemeshSettings& settings, double junctionSpacing,
                                   std::string& note) {
   const double finest = settings.finestVoxelShare * plan.targetSize;
@@ -224,7 +205,7 @@ std::vector<SheetPlan> planSheets(const std::vector<Sheet>& sheets, const PartPl
       const ReferenceSurface original(surface);
       plans.push_back({true, spacing,
                        meshFromBoundary(sheets[k], surface, original, spacing, plan.targetSize,
-                                        junctionSpacing)});
+                                        junctionSpacing, hardPoints[k])});
       if (spacing < plan.targetSize)
         note += std::string(note.empty() ? "" : "; ") + "sheet " + std::to_string(k) + " is " +
                 formatNumber(width) + " wide: one row of elements " + formatNumber(spacing) +
@@ -246,8 +227,9 @@ std::vector<SheetPlan> planSheets(const std::vector<Sheet>& sheets, const PartPl
 }  // namespace
 
 RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const RemeshSettings& settings,
-                        double junctionSpacing, const std::vector<Id>& keptParts, QuadMesh& mesh,
+                        const PartSurroundings& surroundings, QuadMesh& mesh,
                         const StageCallback& stage) {
+  const double junctionSpacing = surroundings.junctionSpacing;
   RemeshedPart part;
   part.plan = plan;
   part.status = PartStatus::Kept;
@@ -255,7 +237,7 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
   std::vector<Sheet> sheets;
   try {
     sheets = buildSheets(model, plan.part, settings.sheets);
-    markKeptSeams(sheets, model, keptParts);
+    markKeptSeams(sheets, model, surroundings.keptParts);
   } catch (const std::bad_alloc&) {
     part.reason = "out of memory while splitting it into sheets";
     return part;
@@ -268,7 +250,12 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
     return part;
   }
   std::string sizeNote;
-  std::vector<SheetPlan> plans = planSheets(sheets, plan, settings, junctionSpacing, sizeNote);
+  const SheetHardPoints hardPoints = placeHardPoints(sheets, surroundings.hardPoints);
+  std::vector<Point3> hardPositions;
+  for (const Node& node : model.nodes)
+    if (surroundings.hardPoints.count(node.id)) hardPositions.push_back(node.xyz);
+  std::vector<SheetPlan> plans =
+      planSheets(sheets, hardPoints, plan, settings, junctionSpacing, sizeNote);
   const QuadMesh original = quadMeshFromModel(model, plan.part);
   const double finest = settings.finestVoxelShare * plan.targetSize;
   std::vector<std::string> failures;
@@ -289,12 +276,19 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
     std::string at = "size " + formatNumber(size) + ": ";
     try {
       std::vector<std::uint8_t> folded;
-      QuadMesh candidate =
-          meshSheets(sheets, plans, plan, settings, junctionSpacing, part, folded, size, stage);
+      QuadMesh candidate = meshSheets(sheets, plans, hardPoints, plan, settings, junctionSpacing,
+                                      part, folded, size, stage);
       part.voxelSize = size;
       at = "size " + formatNumber(size) + ": ";
       part.acceptance = acceptPartMesh(candidate, original, folded, size, plan.targetSize,
                                        settings.optimizeSettings.quality);
+      const std::size_t missing = missingPoints(candidate, hardPositions);
+      if (part.acceptance.accepted && missing > 0) {
+        failures.push_back(at + std::to_string(missing) + " of its " +
+                           std::to_string(hardPositions.size()) +
+                           " hard points (nodes other keywords use) are not nodes of the new mesh");
+        continue;
+      }
       if (part.acceptance.accepted) {
         part.status = attempt == 0 ? PartStatus::Remeshed : PartStatus::Retried;
         part.reason = sizeNote;

@@ -2,9 +2,11 @@
 // voxels and the acceptance of each attempt's mesh (pipeline.h). Internal to src/pipeline.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "voxremesh/pipeline.h"
@@ -48,6 +50,40 @@ double sheetWidth(const Sheet& sheet);
 /// Called with the stage a part enters ("volume", "extract", "optimize").
 using StageCallback = std::function<void(const char* stage)>;
 
+using Point3 = std::array<double, 3>;
+
+/// What a part's remesh must respect of the deck around it.
+struct PartSurroundings {
+  double junctionSpacing = 0.0;  ///< the node spacing on the part's junction curves (> 0)
+  /// Parts (ascending IDs) that keep their elements: the seams along them keep their nodes.
+  std::vector<Id> keptParts;
+  /// Nodes of the part that other keywords use as points (hardPointNodes): the new mesh has a
+  /// node at each, at its exact coordinates.
+  std::unordered_set<Id> hardPoints;
+};
+
+/// Marks the junction curves of `sheets` that run along a part of `keptParts` (ascending IDs): a
+/// curve with an edge whose two nodes are both used by the shells of one kept part in `model`.
+/// Every point of such a curve stays a node and none is added (Polyline::keepPoints), so that the
+/// seam keeps the kept part's nodes.
+void markKeptSeams(std::vector<Sheet>& sheets, const FeModel& model,
+                   const std::vector<Id>& keptParts);
+
+/// Puts the hard points (sheet points whose node ID is in `hardPoints`) where extraction keeps
+/// them: one on a boundary loop, feature line or junction curve becomes a feature point (a fixed
+/// corner) and cuts the junction curves through it (so both sides of a seam place a node there).
+/// @return per sheet, the positions of its other hard points (inside it), for snapHardPoints
+std::vector<std::vector<Point3>> placeHardPoints(std::vector<Sheet>& sheets,
+                                                 const std::unordered_set<Id>& hardPoints);
+
+/// For each of `points` in turn, moves the nearest point of `mesh` that is free (role Free, not
+/// moved already) exactly onto it and fixes it there (role Corner), so that the optimisation
+/// keeps it. A point finds no partner when the mesh has no free point left.
+void snapHardPoints(QuadMesh& mesh, const std::vector<Point3>& points);
+
+/// How many of `points` are not points of `mesh` (bit-identical coordinates).
+std::size_t missingPoints(const QuadMesh& mesh, const std::vector<Point3>& points);
+
 /// Remeshes one part: its sheets; a voxel of the plan's target size, reduced where a sheet is
 /// narrower than settings.narrowFeatureVoxels voxels; up to 1 + settings.retries attempts, each
 /// at half the voxel of the one before (never below settings.finestVoxelShare x target size),
@@ -55,12 +91,10 @@ using StageCallback = std::function<void(const char* stage)>;
 /// status Kept with the reason (std::bad_alloc and a refused memory budget end the attempts).
 /// @param model            the part's shells and the shells sharing nodes with them
 /// @param plan             the part
-/// @param junctionSpacing  the node spacing on the part's junction curves
-/// @param keptParts        parts (ascending IDs) that keep their elements: the seams along them
-///                         keep their nodes (every node of the seam, none added)
+/// @param surroundings     junction spacing, kept neighbours and hard points
 /// @param mesh             receives the accepted mesh (cleared when the part is kept)
 RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const RemeshSettings& settings,
-                        double junctionSpacing, const std::vector<Id>& keptParts, QuadMesh& mesh,
+                        const PartSurroundings& surroundings, QuadMesh& mesh,
                         const StageCallback& stage);
 
 }  // namespace voxremesh::pipeline

@@ -33,9 +33,13 @@ const char* const kHelp =
     "round failing elements, warping removal, folds cut out and refilled, failing quads split\n"
     "into triangle pairs while triangles stay at or under 3 %); parts in parallel.\n"
     "Every other part, element and keyword is written back untouched; new node and element IDs\n"
-    "lie above all IDs of IN; keywords naming nodes of a remeshed part are remapped to the\n"
-    "nearest new node (listed in --report; what cannot be remapped is printed as a warning and\n"
-    "its node kept). The output format follows OUT's extension.\n"
+    "lie above all IDs of IN. Hard points, nodes that other keywords use as points (beam, mass,\n"
+    "spring and rigid element ends, welds, point loads, SPC and history nodes), stay nodes of the\n"
+    "new mesh with their ID and coordinates; a part whose mesh cannot keep them is kept. Node\n"
+    "sets and per-node data name regions: they are remapped to the nearest new node (listed in\n"
+    "--report; what cannot be remapped is printed as a warning and its node kept). Seams stay\n"
+    "shared: a seam to a part that is kept keeps every node of that part's side. The output\n"
+    "format follows OUT's extension.\n"
     "Each part ends remeshed (its mesh passed the acceptance), retried (passed at a finer voxel)\n"
     "or kept (its original shells written back unchanged, with the reason). Acceptance: distance\n"
     "to the original within 0.25 x size (sampled inside faces), no folded element, no quad corner\n"
@@ -122,11 +126,11 @@ std::string formatRemeshTotals(const std::string& output, const RemeshReport& re
   std::snprintf(line, sizeof line,
                 "wrote %s: %zu parts remeshed, %zu retried at a finer voxel, %zu kept; %zu -> %zu "
                 "elements, %zu remeshed ones failing a criterion; largest distance %.3g x size; "
-                "%zu node references remapped, %zu not remappable, %.2f s\n",
+                "%zu hard points kept, %zu node references remapped, %zu not remappable, %.2f s\n",
                 output.c_str(), report.count(PartStatus::Remeshed),
                 report.count(PartStatus::Retried), report.count(PartStatus::Kept), before, after,
-                failing, distanceShare, report.assembly.remaps.size(),
-                report.assembly.unmapped.size(), seconds);
+                failing, distanceShare, report.assembly.hardPointsKept,
+                report.assembly.remaps.size(), report.assembly.unmapped.size(), seconds);
   return line;
 }
 

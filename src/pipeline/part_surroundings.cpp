@@ -1,0 +1,133 @@
+// What a part's remesh must respect of the deck around it: seams along kept parts and hard points
+// (remesh_part.h).
+#include <algorithm>
+#include <limits>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "pipeline/remesh_part.h"
+
+namespace voxremesh::pipeline {
+
+namespace {
+
+/// Cuts the polylines of `curves` at the points flagged in `cut` (an open polyline into pieces, a
+/// closed one opened at its first flagged point and cut at the others).
+void cutAt(std::vector<Polyline>& curves, const std::vector<std::uint8_t>& cut) {
+  std::vector<Polyline> result;
+  for (Polyline& curve : curves) {
+    std::vector<PointIndex> points = curve.points;
+    if (curve.closed) {
+      const auto first =
+          std::find_if(points.begin(), points.end(), [&](PointIndex p) { return cut[p] != 0; });
+      if (first == points.end()) {
+        result.push_back(std::move(curve));
+        continue;
+      }
+      std::rotate(points.begin(), first, points.end());
+      points.push_back(points.front());
+    }
+    Polyline piece;
+    piece.keepPoints = curve.keepPoints;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      piece.points.push_back(points[i]);
+      if (i > 0 && i + 1 < points.size() && cut[points[i]] != 0) {
+        result.push_back(piece);
+        piece.points = {points[i]};
+      }
+    }
+    result.push_back(std::move(piece));
+  }
+  curves = std::move(result);
+}
+
+}  // namespace
+
+void markKeptSeams(std::vector<Sheet>& sheets, const FeModel& model,
+                   const std::vector<Id>& keptParts) {
+  if (keptParts.empty()) return;
+  std::unordered_map<Id, std::vector<Id>> keptPartsOfNode;
+  for (const Shell& shell : model.shells) {
+    if (!std::binary_search(keptParts.begin(), keptParts.end(), shell.part)) continue;
+    for (int c = 0; c < shell.nodeCount; ++c) {
+      std::vector<Id>& list = keptPartsOfNode[shell.nodes[static_cast<std::size_t>(c)]];
+      if (std::find(list.begin(), list.end(), shell.part) == list.end()) list.push_back(shell.part);
+    }
+  }
+  const auto alongKeptPart = [&](Id a, Id b) {
+    const auto x = keptPartsOfNode.find(a), y = keptPartsOfNode.find(b);
+    if (x == keptPartsOfNode.end() || y == keptPartsOfNode.end()) return false;
+    for (const Id part : x->second)
+      if (std::find(y->second.begin(), y->second.end(), part) != y->second.end()) return true;
+    return false;
+  };
+  for (Sheet& sheet : sheets)
+    for (Polyline& curve : sheet.junctionCurves) {
+      const std::size_t n = curve.points.size();
+      for (std::size_t i = 0; i + 1 < n + (curve.closed ? 1 : 0) && !curve.keepPoints; ++i)
+        curve.keepPoints = alongKeptPart(sheet.pointNodeIds[curve.points[i]],
+                                         sheet.pointNodeIds[curve.points[(i + 1) % n]]);
+    }
+}
+
+std::vector<std::vector<Point3>> placeHardPoints(std::vector<Sheet>& sheets,
+                                                 const std::unordered_set<Id>& hardPoints) {
+  std::vector<std::vector<Point3>> inside(sheets.size());
+  if (hardPoints.empty()) return inside;
+  for (std::size_t k = 0; k < sheets.size(); ++k) {
+    Sheet& sheet = sheets[k];
+    std::vector<std::uint8_t> onCurve(sheet.points.size(), 0), hard(sheet.points.size(), 0);
+    for (const std::vector<Polyline>* curves :
+         {&sheet.boundaryLoops, &sheet.featureLines, &sheet.junctionCurves})
+      for (const Polyline& curve : *curves)
+        for (const PointIndex p : curve.points) onCurve[p] = 1;
+    bool any = false;
+    for (PointIndex p = 0; p < sheet.points.size(); ++p) {
+      if (!hardPoints.count(sheet.pointNodeIds[p])) continue;
+      if (!onCurve[p]) {
+        inside[k].push_back(sheet.points[p]);
+        continue;
+      }
+      hard[p] = 1;
+      any = true;
+      if (std::find(sheet.featurePoints.begin(), sheet.featurePoints.end(), p) ==
+          sheet.featurePoints.end())
+        sheet.featurePoints.push_back(p);
+    }
+    if (any) cutAt(sheet.junctionCurves, hard);
+  }
+  return inside;
+}
+
+void snapHardPoints(QuadMesh& mesh, const std::vector<Point3>& points) {
+  if (points.empty()) return;
+  mesh.constraints.resize(mesh.points.size());
+  for (const Point3& target : points) {
+    std::size_t best = mesh.points.size();
+    double bestDistance = std::numeric_limits<double>::infinity();
+    for (std::size_t p = 0; p < mesh.points.size(); ++p) {
+      if (mesh.constraints[p].role != PointRole::Free) continue;
+      double d = 0.0;
+      for (int c = 0; c < 3; ++c) {
+        const double delta = mesh.points[p][std::size_t(c)] - target[std::size_t(c)];
+        d += delta * delta;
+      }
+      if (d < bestDistance) bestDistance = d, best = p;
+    }
+    if (best == mesh.points.size()) return;
+    mesh.points[best] = target;
+    mesh.constraints[best] = {PointRole::Corner, kNoCurve};
+  }
+}
+
+std::size_t missingPoints(const QuadMesh& mesh, const std::vector<Point3>& points) {
+  if (points.empty()) return 0;
+  std::vector<Point3> sorted = mesh.points;
+  std::sort(sorted.begin(), sorted.end());
+  return static_cast<std::size_t>(std::count_if(points.begin(), points.end(), [&](const Point3& p) {
+    return !std::binary_search(sorted.begin(), sorted.end(), p);
+  }));
+}
+
+}  // namespace voxremesh::pipeline
