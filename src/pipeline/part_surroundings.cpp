@@ -100,12 +100,13 @@ std::vector<std::vector<Point3>> placeHardPoints(std::vector<Sheet>& sheets,
   return inside;
 }
 
-void snapHardPoints(QuadMesh& mesh, const std::vector<Point3>& points) {
-  if (points.empty()) return;
+std::size_t snapHardPoints(QuadMesh& mesh, const std::vector<Point3>& points, double reach) {
+  if (points.empty()) return 0;
   mesh.constraints.resize(mesh.points.size());
+  std::size_t placed = 0;
   for (const Point3& target : points) {
     std::size_t best = mesh.points.size();
-    double bestDistance = std::numeric_limits<double>::infinity();
+    double bestDistance = reach * reach;
     for (std::size_t p = 0; p < mesh.points.size(); ++p) {
       if (mesh.constraints[p].role != PointRole::Free) continue;
       double d = 0.0;
@@ -113,12 +114,17 @@ void snapHardPoints(QuadMesh& mesh, const std::vector<Point3>& points) {
         const double delta = mesh.points[p][std::size_t(c)] - target[std::size_t(c)];
         d += delta * delta;
       }
-      if (d < bestDistance) bestDistance = d, best = p;
+      if (d <= bestDistance) {
+        if (d == bestDistance && best < p) continue;
+        bestDistance = d, best = p;
+      }
     }
-    if (best == mesh.points.size()) return;
+    if (best == mesh.points.size()) continue;
     mesh.points[best] = target;
     mesh.constraints[best] = {PointRole::Corner, kNoCurve};
+    ++placed;
   }
+  return placed;
 }
 
 std::size_t missingPoints(const QuadMesh& mesh, const std::vector<Point3>& points) {

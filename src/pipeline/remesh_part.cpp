@@ -51,21 +51,26 @@ extract::JunctionNodes sheetJunctionNodes(const Sheet& sheet, double spacing) {
   return extract::JunctionNodes(curves, spacing, 0.2 * spacing);
 }
 
-/// One sheet's mesh from its boundary alone (narrow_sheet.h), nodes `spacing` apart along it.
-/// Throws extract::NarrowSheetRefusal when the sheet cannot be meshed so, or has hard points
-/// inside it (a mesh of its boundary alone has no node there).
+/// One sheet's mesh from its boundary alone (narrow_sheet.h), nodes `spacing` apart along it;
+/// the hard points inside the sheet are snapped to nodes inside the mesh (a grid's).
+/// Throws extract::NarrowSheetRefusal when the sheet cannot be meshed so, or a hard point finds
+/// no node inside the mesh within `spacing`.
 QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
                           const ReferenceSurface& original, double spacing, double targetSize,
                           double junctionSpacing, const std::vector<Point3>& hardPoints) {
-  if (!hardPoints.empty())
-    throw extract::NarrowSheetRefusal(std::to_string(hardPoints.size()) +
-                                      " hard points lie inside it (nodes other keywords use)");
   extract::NarrowSheetSettings narrow;
   narrow.spacing = spacing;
   narrow.tolerance = kNarrowChordShare * targetSize;
   narrow.maxChord = kNarrowChordWidths * std::max(sheetWidth(sheet), spacing);
-  return extract::meshNarrowSheet(sheet, surface, original,
-                                  sheetJunctionNodes(sheet, junctionSpacing), narrow);
+  QuadMesh mesh = extract::meshNarrowSheet(sheet, surface, original,
+                                           sheetJunctionNodes(sheet, junctionSpacing), narrow);
+  const std::size_t placed = snapHardPoints(mesh, hardPoints, spacing);
+  if (placed < hardPoints.size())
+    throw extract::NarrowSheetRefusal(std::to_string(hardPoints.size() - placed) + " of its " +
+                                      std::to_string(hardPoints.size()) +
+                                      " hard points inside it (nodes other keywords use) find no "
+                                      "node inside its mesh");
+  return mesh;
 }
 
 /// One sheet's mesh through a volume of the given voxel size, extracted, with the hard points
@@ -87,7 +92,7 @@ QuadMesh meshThroughVolume(const Sheet& sheet, const ReferenceSurface& original,
   start = std::chrono::steady_clock::now();
   ExtractStats stats;
   QuadMesh mesh = extractQuadMesh(volume, extractSettings, &stats);
-  snapHardPoints(mesh, hardPoints);
+  snapHardPoints(mesh, hardPoints, voxel);
   addExtractStats(part.extract, stats);
   part.extractSeconds += since(start);
   if (settings.optimize) {

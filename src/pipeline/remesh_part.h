@@ -77,9 +77,10 @@ std::vector<std::vector<Point3>> placeHardPoints(std::vector<Sheet>& sheets,
                                                  const std::unordered_set<Id>& hardPoints);
 
 /// For each of `points` in turn, moves the nearest point of `mesh` that is free (role Free, not
-/// moved already) exactly onto it and fixes it there (role Corner), so that the optimisation
-/// keeps it. A point finds no partner when the mesh has no free point left.
-void snapHardPoints(QuadMesh& mesh, const std::vector<Point3>& points);
+/// moved already) and at most `reach` away exactly onto it and fixes it there (role Corner), so
+/// that the optimisation keeps it.
+/// @return how many of `points` found a partner
+std::size_t snapHardPoints(QuadMesh& mesh, const std::vector<Point3>& points, double reach);
 
 /// How many of `points` are not points of `mesh` (bit-identical coordinates).
 std::size_t missingPoints(const QuadMesh& mesh, const std::vector<Point3>& points);
