@@ -151,13 +151,81 @@ TEST(NarrowSheet, AJunctionThroughTheMiddleCutsTheSheetAndBothSidesShareItsNodes
   EXPECT_EQ(middle, 7u);  // 24 mm at 4 mm: 6 pieces
 }
 
-TEST(NarrowSheet, AFoldAcrossTheStripThatNoChordFollowsIsRefused) {
-  // 4 mm wide, folded by 90 degrees along its middle line: a chord across cuts the fold's corner
-  // by 1.41 mm, more than the tolerance, and the fold has no boundary node to pass through.
+TEST(NarrowSheet, AFoldAlongTheStripThatNoChordFollowsIsACutBetweenTwoRows) {
+  // 4 mm wide, folded by 90 degrees along its middle line (an angle section): a chord across
+  // would cut the fold's corner by 1.41 mm, more than the tolerance; the fold is a feature line,
+  // so the strip is cut there into two flat rows sharing the fold's nodes.
   const FeModel model = strip(10, 2, 4.0, 2.0, 1000, 2.0);
-  EXPECT_THROW(meshStrip(model, 1, 4.0, 0.5), extract::NarrowSheetRefusal);
-  // With a tolerance that allows it, the same strip gets its row.
-  EXPECT_NO_THROW(meshStrip(model, 1, 4.0, 2.0));
+  const QuadMesh mesh = meshStrip(model, 1, 4.0, 0.5);
+  EXPECT_EQ(triangleCount(mesh), 0u);
+  EXPECT_EQ(mesh.faces.size(), 20u);  // 40 mm at 4 mm, two rows
+  std::size_t onFold = 0;
+  for (const auto& p : mesh.points)
+    onFold += std::abs(p[1] - 2.0) < 1e-12 && std::abs(p[2]) < 1e-12;
+  EXPECT_EQ(onFold, 11u);
+  EXPECT_NEAR(area(mesh), 40.0 * 4.0, 1e-9);
+}
+
+TEST(NarrowSheet, ARoundTubeGetsRowsSweptFromOneEndToTheOther) {
+  // A tube of radius 3 (16 facets round) and length 40, open at both ends: a ring whose chords
+  // across would pass through its inside; rows of quads run from one end loop to the other.
+  FeModel model;
+  const int round = 16, along = 10;
+  auto id = [&](int i, int j) { return Id(1 + j * round + i % round); };
+  for (int j = 0; j <= along; ++j)
+    for (int i = 0; i < round; ++i) {
+      const double t = 2.0 * M_PI * i / round;
+      model.nodes.push_back({id(i, j), {4.0 * j, 3.0 * std::cos(t), 3.0 * std::sin(t)}});
+    }
+  Id shell = 1;
+  for (int j = 0; j < along; ++j)
+    for (int i = 0; i < round; ++i)
+      model.shells.push_back(
+          {shell++, 1, {id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)}});
+  model.partOrAdd(1);
+  const QuadMesh mesh = meshStrip(model, 1, 4.0, 0.3);
+  EXPECT_EQ(triangleCount(mesh), 0u);
+  // Round: 10 nodes (5 pieces of 4 mm would leave the circle by 0.57 mm, over the tolerance);
+  // along: 40 mm at 4 mm, 10 rows.
+  EXPECT_EQ(mesh.faces.size(), 10u * 10u);
+}
+
+TEST(NarrowSheet, ABoxClosedAtOneEndIsCutIntoWallsAndCap) {
+  // A 4 x 6 box section 40 long, closed at x = 0 (a cup, one boundary loop): no row of faces
+  // across it stays on it, but cut at its four edges and the cap's outline each face is a grid.
+  FeModel model;
+  std::map<std::array<long, 3>, Id> ids;
+  Id next = 1, shell = 1;
+  auto node = [&](long x, long y, long z) {
+    const auto [it, added] = ids.emplace(std::array<long, 3>{x, y, z}, next);
+    if (added) model.nodes.push_back({next++, {double(x), double(y), double(z)}});
+    return it->second;
+  };
+  const std::array<std::array<long, 2>, 5> ring{{{0, 0}, {4, 0}, {4, 6}, {0, 6}, {0, 0}}};
+  for (long x = 0; x < 40; x += 2)
+    for (std::size_t s = 0; s < 4; ++s) {
+      const auto [y0, z0] = ring[s];
+      const auto [y1, z1] = ring[s + 1];
+      const long steps = std::max(std::abs(y1 - y0), std::abs(z1 - z0)) / 2;
+      for (long k = 0; k < steps; ++k) {
+        const long ya = y0 + (y1 - y0) * k / steps, za = z0 + (z1 - z0) * k / steps;
+        const long yb = y0 + (y1 - y0) * (k + 1) / steps, zb = z0 + (z1 - z0) * (k + 1) / steps;
+        model.shells.push_back(
+            {shell++,
+             1,
+             {node(x, ya, za), node(x, yb, zb), node(x + 2, yb, zb), node(x + 2, ya, za)}});
+      }
+    }
+  for (long y = 0; y < 4; y += 2)
+    for (long z = 0; z < 6; z += 2)
+      model.shells.push_back(
+          {shell++,
+           1,
+           {node(0, y, z), node(0, y, z + 2), node(0, y + 2, z + 2), node(0, y + 2, z)}});
+  model.partOrAdd(1);
+  const QuadMesh mesh = meshStrip(model, 1, 4.0, 0.2);
+  EXPECT_EQ(triangleCount(mesh), 0u);
+  EXPECT_NEAR(area(mesh), 40.0 * 20.0 + 4.0 * 6.0, 1e-9);
 }
 
 TEST(NarrowSheet, ARingGetsOneRowRoundItsHole) {

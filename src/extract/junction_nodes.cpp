@@ -162,6 +162,10 @@ std::vector<CurveNode> sampleCurve(const Walk& walk, bool keepPoints, double spa
 
 JunctionNodes::JunctionNodes(const std::vector<VolumeCurve>& curves, double spacing,
                              double tolerance) {
+  add(curves, spacing, tolerance);
+}
+
+void JunctionNodes::add(const std::vector<VolumeCurve>& curves, double spacing, double tolerance) {
   if (!(spacing > 0.0) || !std::isfinite(spacing) || !(tolerance > 0.0) ||
       !std::isfinite(tolerance))
     throw std::invalid_argument("junction nodes: spacing and tolerance must be positive");

@@ -52,6 +52,10 @@ class JunctionNodes {
   /// Throws std::invalid_argument when spacing or tolerance is not positive and finite.
   JunctionNodes(const std::vector<VolumeCurve>& curves, double spacing, double tolerance);
 
+  /// Samples more curves, at their own spacing and tolerance (as the constructor); an edge that
+  /// already has nodes keeps them. Throws as the constructor.
+  void add(const std::vector<VolumeCurve>& curves, double spacing, double tolerance);
+
   /// True when there are no junction curves.
   bool empty() const { return edges_.empty(); }
 

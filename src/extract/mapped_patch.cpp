@@ -1,7 +1,9 @@
 // A structured grid over a four-sided patch (see mapped_patch.h).
 #include "extract/mapped_patch.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "extract/polygon_quads.h"
 #include "geometry/vec3.h"
@@ -146,6 +148,113 @@ std::optional<MappedPatch> mappedPatch(const PolylineParam& loop,
     }
   }
   return patch;
+}
+
+namespace {
+
+/// True when the quad is convex, agrees with the surface normal and stays within `tolerance` of
+/// the surface at its centre and edge midpoints.
+bool quadOnSurface(const std::array<Vec3, 4>& q, const ReferenceSurface& reference,
+                   const NormalAt& normalAt, double tolerance) {
+  const Vec3 centre = (q[0] + q[1] + q[2] + q[3]) * 0.25;
+  if (!convexQuad(q, normalAt(centre))) return false;
+  if (reference.closestPoint(centre).distance > tolerance) return false;
+  for (std::size_t c = 0; c < 4; ++c)
+    if (reference.closestPoint((q[c] + q[(c + 1) % 4]) * 0.5).distance > tolerance) return false;
+  return true;
+}
+
+/// The whole closed loop spaced evenly with `count` nodes from its first node.
+Side respacedLoop(const PolylineParam& loop, const Side& nodes, std::size_t count) {
+  Side out{nodes.front()};
+  for (std::size_t k = 1; k < count; ++k) {
+    const double v =
+        std::fmod(nodes.front().param + loop.length() * double(k) / double(count), loop.length());
+    out.push_back({v, toArray(loop.pointAt(v)), PointRole::Boundary});
+  }
+  std::stable_sort(out.begin(), out.end(),
+                   [](const LoopNode& a, const LoopNode& b) { return a.param < b.param; });
+  return out;
+}
+
+/// A closed loop of nodes is movable when none is prescribed and no stretch is fixed.
+bool movableLoop(const Side& nodes) {
+  for (const LoopNode& node : nodes)
+    if (node.role != PointRole::Boundary || node.fixedAfter) return false;
+  return true;
+}
+
+}  // namespace
+
+std::optional<MappedRing> mappedRing(const std::array<PolylineParam, 2>& loops,
+                                     std::array<std::vector<LoopNode>, 2> nodes, double spacing,
+                                     const ReferenceSurface& reference, const NormalAt& normalAt,
+                                     double tolerance) {
+  if (nodes[0].size() < 3 || nodes[1].size() < 3) return std::nullopt;
+  if (nodes[0].size() != nodes[1].size()) {
+    const std::size_t more = nodes[0].size() > nodes[1].size() ? 0 : 1;
+    if (movableLoop(nodes[1 - more])) {
+      nodes[1 - more] = respacedLoop(loops[1 - more], nodes[1 - more], nodes[more].size());
+    } else if (movableLoop(nodes[more])) {
+      nodes[more] = respacedLoop(loops[more], nodes[more], nodes[1 - more].size());
+    } else {
+      return std::nullopt;
+    }
+  }
+  const std::size_t n = nodes[0].size();
+  const auto& a = nodes[0];
+  const auto& b = nodes[1];
+  // The pairing i -> (offset + i) or (offset - i) mod n with the shortest total length.
+  const auto paired = [n](std::size_t offset, bool forward, std::size_t i) {
+    return forward ? (offset + i) % n : (offset + n - i % n) % n;
+  };
+  std::size_t bestOffset = 0;
+  bool bestForward = true;
+  double shortest = std::numeric_limits<double>::infinity();
+  for (const bool forward : {true, false})
+    for (std::size_t offset = 0; offset < n; ++offset) {
+      double total = 0.0;
+      for (std::size_t i = 0; i < n && total < shortest; ++i)
+        total += distance(a[i].point, b[paired(offset, forward, i)].point);
+      if (total < shortest) shortest = total, bestOffset = offset, bestForward = forward;
+    }
+  const auto pair = [&](std::size_t i) { return paired(bestOffset, bestForward, i); };
+  const std::size_t rows =
+      std::max<std::size_t>(1, std::size_t(std::lround(shortest / double(n) / spacing)));
+  MappedRing ring;
+  for (std::size_t k = 1; k < rows; ++k)
+    for (std::size_t i = 0; i < n; ++i) {
+      const double t = double(k) / double(rows);
+      ring.inner.push_back(
+          reference.closestPoint(a[i].point * (1 - t) + b[pair(i)].point * t).point);
+    }
+  const auto index = [&](std::size_t i, std::size_t k) -> std::uint32_t {
+    i %= n;
+    if (k == 0) return std::uint32_t(i);
+    if (k == rows) return std::uint32_t(n + pair(i));
+    return std::uint32_t(2 * n + (k - 1) * n + i);
+  };
+  const auto point = [&](std::uint32_t q) -> const Vec3& {
+    return q < n ? a[q].point : q < 2 * n ? b[q - n].point : ring.inner[q - 2 * n];
+  };
+  bool reversed = false;
+  for (std::size_t k = 0; k < rows; ++k)
+    for (std::size_t i = 0; i < n; ++i) {
+      std::array<std::uint32_t, 4> quad{index(i, k), index(i + 1, k), index(i + 1, k + 1),
+                                        index(i, k + 1)};
+      if (reversed) std::swap(quad[1], quad[3]);
+      std::array<Vec3, 4> q{point(quad[0]), point(quad[1]), point(quad[2]), point(quad[3])};
+      if (!quadOnSurface(q, reference, normalAt, tolerance)) {
+        if (!ring.quads.empty()) return std::nullopt;
+        reversed = true;  // the first quad decides the orientation
+        std::swap(quad[1], quad[3]);
+        std::swap(q[1], q[3]);
+        if (!quadOnSurface(q, reference, normalAt, tolerance)) return std::nullopt;
+      }
+      ring.quads.push_back(quad);
+    }
+  ring.loops = std::move(nodes);
+  return ring;
 }
 
 }  // namespace voxremesh::extract

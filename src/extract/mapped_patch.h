@@ -54,4 +54,32 @@ std::optional<MappedPatch> mappedPatch(const PolylineParam& loop,
                                        const ReferenceSurface& reference, const NormalAt& normalAt,
                                        double tolerance);
 
+/// The rows of mappedRing: both loops' nodes (a loop may have been spaced again), the nodes inside
+/// (row after row), and the quads (indices: the first loop's nodes, the second's, then the inner
+/// nodes), oriented like the surface.
+struct MappedRing {
+  std::array<std::vector<LoopNode>, 2> loops;
+  std::vector<std::array<double, 3>> inner;
+  std::vector<std::array<std::uint32_t, 4>> quads;
+};
+
+/// Meshes a ring patch (a band round a hole, or a tube between its two ends) as rows of quads
+/// swept from one loop to the other: both loops get as many nodes (a loop without prescribed
+/// nodes or fixed stretches is spaced again evenly with the other's count); node i of the first is
+/// paired with a node of the second, in the direction and with the offset that make the pairs
+/// shortest in total; each pair's chord is cut into as many pieces as the mean pair is long in
+/// `spacing`s (at least one), laid on the surface.
+/// @param loops      the two loops (closed)
+/// @param nodes      the nodes on each, ascending arc length, at least 3 each
+/// @param spacing    the element length wanted across the rows (> 0)
+/// @param reference  the surface the inner nodes are laid on
+/// @param normalAt   the surface normal at a point, which every quad must agree with
+/// @param tolerance  largest distance of a quad's centre and edge midpoints from the surface
+/// @return the rows, or nothing when the counts cannot be matched, or a quad is not convex or
+///         leaves the surface
+std::optional<MappedRing> mappedRing(const std::array<PolylineParam, 2>& loops,
+                                     std::array<std::vector<LoopNode>, 2> nodes, double spacing,
+                                     const ReferenceSurface& reference, const NormalAt& normalAt,
+                                     double tolerance);
+
 }  // namespace voxremesh::extract

@@ -295,9 +295,10 @@ QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& 
 }
 
 /// The mesh of a ring patch (two loops, a band or a tube): the nodes of both loops, the second's
-/// lined up with the first's, joined by a bridge between their closest nodes into one polygon
-/// (each loop run once, the bridge there and back), which polygonQuads meshes; the bridge's two
-/// visits are one edge again afterwards.
+/// lined up with the first's; rows swept from one loop to the other where they fit
+/// (mapped_patch.h, mappedRing), else both joined by a bridge between their closest nodes into
+/// one polygon (each loop run once, the bridge there and back), which polygonQuads meshes; the
+/// bridge's two visits are one edge again afterwards.
 QuadMesh meshRing(const std::array<std::vector<Vec3>, 2>& loops,
                   const std::array<std::vector<char>, 2>& corners, const QuadMesh& surface,
                   const ReferenceSurface& reference, const JunctionNodes& junctions,
@@ -311,6 +312,25 @@ QuadMesh meshRing(const std::array<std::vector<Vec3>, 2>& loops,
       across.push_back({node.point, tangentAt(firstLoop, node.param)});
   const std::vector<LoopNode> second = loopNodes(loops[1], corners[1], junctions, settings.spacing,
                                                  settings.tolerance, settings.maxChord, across);
+  const auto surfaceNormal = [&](const Vec3& p) { return normalAt(surface, reference, p); };
+  if (const auto rows = mappedRing({PolylineParam(loops[0], true), PolylineParam(loops[1], true)},
+                                   {first, second}, settings.spacing, reference, surfaceNormal,
+                                   settings.tolerance)) {
+    QuadMesh mesh;
+    for (std::uint32_t l = 0; l < 2; ++l) {
+      mesh.curves.push_back({loops[l], true, PointRole::Boundary});
+      for (const LoopNode& node : rows->loops[l]) {
+        mesh.points.push_back(node.point);
+        mesh.constraints.push_back({node.role, l});
+      }
+    }
+    for (const Vec3& p : rows->inner) {
+      mesh.points.push_back(p);
+      mesh.constraints.push_back({});
+    }
+    for (const auto& quad : rows->quads) mesh.faces.push_back({quad[0], quad[1], quad[2], quad[3]});
+    return mesh;
+  }
   // The bridge: the closest pair of nodes whose chord lies on the surface.
   std::size_t a0 = first.size(), b0 = second.size();
   double shortest = std::numeric_limits<double>::infinity();
@@ -347,16 +367,13 @@ QuadMesh meshRing(const std::array<std::vector<Vec3>, 2>& loops,
   return mesh;
 }
 
-}  // namespace
-
-QuadMesh meshNarrowSheet(const Sheet& sheet, const QuadMesh& surface,
-                         const ReferenceSurface& reference, const JunctionNodes& junctions,
-                         const NarrowSheetSettings& settings) {
-  if (!(settings.spacing > 0.0) || !(settings.tolerance > 0.0) || !(settings.maxChord > 0.0))
-    throw std::invalid_argument("meshNarrowSheet: spacing, tolerance and maxChord must be > 0");
+/// The meshes of the patches, joined at their shared nodes.
+QuadMesh meshPatches(const Sheet& sheet, const std::vector<SheetPatch>& patches,
+                     const QuadMesh& surface, const ReferenceSurface& reference,
+                     const JunctionNodes& junctions, const NarrowSheetSettings& settings) {
   const std::set<PointIndex> corners(sheet.featurePoints.begin(), sheet.featurePoints.end());
   std::vector<QuadMesh> patchMeshes;
-  for (const SheetPatch& patch : sheetPatches(sheet)) {
+  for (const SheetPatch& patch : patches) {
     std::array<std::vector<Vec3>, 2> loopPoints;
     std::array<std::vector<char>, 2> corner;
     for (std::size_t l = 0; l < patch.loops.size(); ++l)
@@ -371,6 +388,43 @@ QuadMesh meshNarrowSheet(const Sheet& sheet, const QuadMesh& surface,
     patchMeshes.back().part = sheet.part;
   }
   return joinAtJunctions(patchMeshes);
+}
+
+/// The feature lines of a sheet in world space.
+std::vector<VolumeCurve> featureCurves(const Sheet& sheet) {
+  std::vector<VolumeCurve> curves;
+  for (const Polyline& line : sheet.featureLines) {
+    VolumeCurve curve;
+    curve.closed = line.closed;
+    for (const PointIndex p : line.points) curve.points.push_back(sheet.points[p]);
+    curves.push_back(std::move(curve));
+  }
+  return curves;
+}
+
+}  // namespace
+
+QuadMesh meshNarrowSheet(const Sheet& sheet, const QuadMesh& surface,
+                         const ReferenceSurface& reference, const JunctionNodes& junctions,
+                         const NarrowSheetSettings& settings) {
+  if (!(settings.spacing > 0.0) || !(settings.tolerance > 0.0) || !(settings.maxChord > 0.0))
+    throw std::invalid_argument("meshNarrowSheet: spacing, tolerance and maxChord must be > 0");
+  try {
+    return meshPatches(sheet, sheetPatches(sheet), surface, reference, junctions, settings);
+  } catch (const NarrowSheetRefusal& refusal) {
+    if (sheet.featureLines.empty()) throw;
+    // Cut at the feature lines too (walls and cap of a box), with nodes on them shared by the
+    // patches on both sides.
+    JunctionNodes withFeatures = junctions;
+    withFeatures.add(featureCurves(sheet), settings.spacing, 0.2 * settings.spacing);
+    try {
+      return meshPatches(sheet, sheetPatches(sheet, true), surface, reference, withFeatures,
+                         settings);
+    } catch (const NarrowSheetRefusal& second) {
+      throw NarrowSheetRefusal(std::string(refusal.what()) + "; cut at its feature lines too, " +
+                               second.what());
+    }
+  }
 }
 
 }  // namespace voxremesh::extract

@@ -29,19 +29,22 @@ std::size_t findRoot(std::vector<std::size_t>& parent, std::size_t x) {
   return x;
 }
 
-/// The inner junction edges of a sheet (see sheetPatches).
-std::set<Edge> innerJunctionEdges(const Sheet& sheet) {
+/// The inner junction edges of a sheet, and its feature-line edges when asked (see sheetPatches).
+std::set<Edge> cutEdges(const Sheet& sheet, bool atFeatureLines) {
   std::set<PointIndex> onLoops;
   for (const Polyline& loop : sheet.boundaryLoops)
     onLoops.insert(loop.points.begin(), loop.points.end());
   std::set<Edge> cuts;
-  for (const Polyline& curve : sheet.junctionCurves) {
+  const auto addEdges = [&](const Polyline& curve, bool rungsToo) {
     const std::size_t n = curve.points.size();
     for (std::size_t i = 0; i + 1 < n + (curve.closed ? 1 : 0); ++i) {
       const PointIndex a = curve.points[i], b = curve.points[(i + 1) % n];
-      if (onLoops.count(a) == 0 || onLoops.count(b) == 0) cuts.insert(edgeKey(a, b));
+      if (rungsToo || onLoops.count(a) == 0 || onLoops.count(b) == 0) cuts.insert(edgeKey(a, b));
     }
-  }
+  };
+  for (const Polyline& curve : sheet.junctionCurves) addEdges(curve, false);
+  if (atFeatureLines)
+    for (const Polyline& line : sheet.featureLines) addEdges(line, true);
   return cuts;
 }
 
@@ -94,8 +97,8 @@ long eulerCharacteristic(const Sheet& sheet, const std::vector<std::size_t>& fac
 
 }  // namespace
 
-std::vector<SheetPatch> sheetPatches(const Sheet& sheet) {
-  const std::set<Edge> cuts = innerJunctionEdges(sheet);
+std::vector<SheetPatch> sheetPatches(const Sheet& sheet, bool atFeatureLines) {
+  const std::set<Edge> cuts = cutEdges(sheet, atFeatureLines);
   std::map<Edge, std::vector<std::size_t>> edgeFaces;
   for (std::size_t f = 0; f < sheet.faces.size(); ++f)
     for (int c = 0; c < corners(sheet.faces[f]); ++c)
@@ -111,7 +114,8 @@ std::vector<SheetPatch> sheetPatches(const Sheet& sheet) {
     const auto it = edgeFaces.find(cut);
     if (it != edgeFaces.end() && it->second.size() == 2 &&
         findRoot(parent, it->second[0]) == findRoot(parent, it->second[1]))
-      throw NarrowSheetRefusal("a junction curve ends inside it");
+      throw NarrowSheetRefusal(atFeatureLines ? "a junction curve or feature line ends inside it"
+                                              : "a junction curve ends inside it");
   }
   std::map<std::size_t, std::size_t> patchOfRoot;
   std::vector<SheetPatch> patches;

@@ -19,12 +19,14 @@ struct SheetPatch {
 
 /// Cuts a sheet into patches along its inner junction edges: junction-curve edges with a face on
 /// both sides, except those joining two points of the sheet's boundary loops (a rung across a
-/// strip whose two sides meet the same part is no line of its own).
-/// @param sheet  a sheet (buildSheets): manifold, consistently oriented
+/// strip whose two sides meet the same part is no line of its own); and, when asked, along all
+/// edges of its feature lines (a box or a cup becomes its walls and its cap).
+/// @param sheet           a sheet (buildSheets): manifold, consistently oriented
+/// @param atFeatureLines  cut along the feature lines too
 /// @return the patches in the order of their first face
 /// Throws NarrowSheetRefusal when a patch is neither a disk (one boundary loop, Euler
-/// characteristic 1) nor a ring (two loops, Euler characteristic 0), or a junction curve ends
-/// inside a patch.
-std::vector<SheetPatch> sheetPatches(const Sheet& sheet);
+/// characteristic 1) nor a ring (two loops, Euler characteristic 0), or a cut ends inside a
+/// patch.
+std::vector<SheetPatch> sheetPatches(const Sheet& sheet, bool atFeatureLines = false);
 
 }  // namespace voxremesh::extract

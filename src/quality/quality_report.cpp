@@ -190,12 +190,13 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
   const std::vector<std::uint8_t> folded = foldedFaces(mesh);
   addMeshCriterion(report, Criterion::Folded, 0.0,
                    std::vector<double>(folded.begin(), folded.end()), folded);
-  report.distanceLimit =
-      s.maxDistanceFactor * (s.distanceSize > 0.0 ? s.distanceSize : s.targetSize);
+  // The distance is judged (and sampled, at half the size) against the size it scales with.
+  const double distanceSize = s.distanceSize > 0.0 ? s.distanceSize : s.targetSize;
+  report.distanceLimit = s.maxDistanceFactor * distanceSize;
   std::vector<double> faceDistance(report.elements, 0.0);
   std::vector<std::uint8_t> far(report.elements, 0);
   if (original) {
-    report.distance = surfaceDistance(mesh, *original, 0.5 * s.targetSize);
+    report.distance = surfaceDistance(mesh, *original, 0.5 * distanceSize);
     faceDistance = report.distance->faceDistance;
     for (std::size_t f = 0; f < report.elements; ++f)
       far[f] = faceDistance[f] > report.distanceLimit ? 1 : 0;
