@@ -184,6 +184,34 @@ QuadMesh meshSheets(const std::vector<Sheet>& sheets, const std::vector<SheetPla
   return mesh;
 }
 
+/// Thrown by an attempt that ends the part's attempts (out of memory, a refused budget).
+struct StopAttempts {};
+
+/// The plans of an attempt from the sheets' boundaries: each sheet `plans` meshes through a volume
+/// is meshed from its boundary where it can be (nodes one target size apart, or twice its width
+/// where that is less); empty when no sheet can be.
+std::vector<SheetPlan> boundaryPlans(const std::vector<Sheet>& sheets,
+                                     const SheetHardPoints& hardPoints, const PartPlan& plan,
+                                     double junctionSpacing, const std::vector<SheetPlan>& plans) {
+  std::vector<SheetPlan> result = plans;
+  bool any = false;
+  for (std::size_t k = 0; k < sheets.size(); ++k) {
+    if (plans[k].fromBoundary) continue;
+    const double spacing = std::min(plan.targetSize, 2.0 * sheetWidth(sheets[k]));
+    try {
+      const QuadMesh surface = sheetSurface(sheets[k]);
+      const ReferenceSurface original(surface);
+      result[k] = {true, spacing,
+                   meshFromBoundary(sheets[k], surface, original, spacing, plan.targetSize,
+                                    junctionSpacing, hardPoints[k])};
+      any = true;
+    } catch (const extract::NarrowSheetRefusal&) {
+    }
+  }
+  if (!any) result.clear();
+  return result;
+}
+
 /// The first attempt's plan per sheet: a sheet narrower than settings.narrowFeatureVoxels target
 /// sizes is meshed from its boundary when it can be (nodes one target size apart along it, or
 /// twice its width where that is less, so that its elements stay as long as they are wide), else
@@ -264,25 +292,17 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
   const QuadMesh original = quadMeshFromModel(model, plan.part);
   const double finest = settings.finestVoxelShare * plan.targetSize;
   std::vector<std::string> failures;
-  for (int attempt = 0; attempt <= settings.retries; ++attempt) {
-    if (attempt > 0) {  // volumes at half the voxel, boundary-meshed sheets as they were
-      bool finer = false;
-      for (SheetPlan& sheetPlan : plans) {
-        if (sheetPlan.fromBoundary || sheetPlan.size / 2 < finest * (1 - 1e-9)) continue;
-        sheetPlan.size /= 2;
-        finer = true;
-      }
-      if (!finer) break;
-    }
+  // One attempt with the sheet plans given; true when its mesh is accepted (then in `mesh`).
+  const auto attempt = [&](const std::vector<SheetPlan>& attemptPlans, bool first) {
     double size = std::numeric_limits<double>::infinity();
-    for (const SheetPlan& sheetPlan : plans) size = std::min(size, sheetPlan.size);
+    for (const SheetPlan& sheetPlan : attemptPlans) size = std::min(size, sheetPlan.size);
     ++part.attempts;
     part.extract = ExtractStats{};  // the counts of the attempt that ends the part
     std::string at = "size " + formatNumber(size) + ": ";
     try {
       std::vector<std::uint8_t> folded;
-      QuadMesh candidate = meshSheets(sheets, plans, hardPoints, plan, settings, junctionSpacing,
-                                      part, folded, size, stage);
+      QuadMesh candidate = meshSheets(sheets, attemptPlans, hardPoints, plan, settings,
+                                      junctionSpacing, part, folded, size, stage);
       part.voxelSize = size;
       at = "size " + formatNumber(size) + ": ";
       part.acceptance = acceptPartMesh(candidate, original, folded, size, plan.targetSize,
@@ -292,26 +312,52 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
         failures.push_back(at + std::to_string(missing) + " of its " +
                            std::to_string(hardPositions.size()) +
                            " hard points (nodes other keywords use) are not nodes of the new mesh");
-        continue;
+        return false;
       }
-      if (part.acceptance.accepted) {
-        part.status = attempt == 0 ? PartStatus::Remeshed : PartStatus::Retried;
-        part.reason = sizeNote;
-        part.quads = part.acceptance.quads;
-        part.trias = part.acceptance.trias;
-        mesh = std::move(candidate);
-        return part;
+      if (!part.acceptance.accepted) {
+        failures.push_back(at + part.acceptance.reason);
+        return false;
       }
-      failures.push_back(at + part.acceptance.reason);
+      part.status = first ? PartStatus::Remeshed : PartStatus::Retried;
+      part.reason = sizeNote;
+      part.quads = part.acceptance.quads;
+      part.trias = part.acceptance.trias;
+      mesh = std::move(candidate);
+      return true;
     } catch (const std::bad_alloc&) {
       failures.push_back(at + "out of memory");
-      break;
     } catch (const SettingError& error) {  // the memory budget or the grid's index range
       failures.push_back(at + error.what());
-      break;
     } catch (const std::exception& error) {
       failures.push_back(at + error.what());
+      return false;
     }
+    throw StopAttempts{};
+  };
+  try {
+    for (int retry = 0; retry <= settings.retries; ++retry) {
+      if (retry > 0) {  // volumes at half the voxel, boundary-meshed sheets as they were
+        bool finer = false;
+        for (SheetPlan& sheetPlan : plans) {
+          if (sheetPlan.fromBoundary || sheetPlan.size / 2 < finest * (1 - 1e-9)) continue;
+          sheetPlan.size /= 2;
+          finer = true;
+        }
+        if (!finer) break;
+      }
+      if (attempt(plans, retry == 0)) return part;
+    }
+    // Last: every volume sheet that can be meshed from its boundary so (a tube, a cup, a box
+    // whose volume mesh lost or added a loop).
+    std::vector<SheetPlan> fromBoundary =
+        boundaryPlans(sheets, hardPoints, plan, junctionSpacing, plans);
+    if (!fromBoundary.empty() && attempt(fromBoundary, false)) {
+      part.reason += std::string(part.reason.empty() ? "" : "; ") +
+                     "meshed from its sheets' boundaries after " + std::to_string(failures.size()) +
+                     " attempts through volumes";
+      return part;
+    }
+  } catch (const StopAttempts&) {
   }
   for (const std::string& failure : failures)
     part.reason += (part.reason.empty() ? "" : "; ") + failure;
