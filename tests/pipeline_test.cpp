@@ -329,5 +329,18 @@ TEST(Pipeline, HardPointsKeepTheirIdAndCoordinatesAndSetsAreNoHardPoints) {
   EXPECT_EQ(shellsOnOtherOldNodes, 0u) << "the set's nodes are a region: all replaced";
 }
 
+TEST(Pipeline, APartWithADuplicateElementIsKeptNamingBothShells) {
+  FeModel model = plateAndWall();
+  test::addShell(model, 9999, 2, {22, 1007, 1001, 11});  // shell 101 again, turned
+  RemeshSettings settings;
+  settings.targetSize = 7.0;
+  const RemeshReport report = remeshDeck(model, settings);
+  ASSERT_EQ(report.parts.size(), 2u);
+  EXPECT_EQ(report.parts[1].status, PartStatus::Kept);
+  EXPECT_NE(report.parts[1].reason.find("shells 101 and 9999 use the same nodes"),
+            std::string::npos)
+      << report.parts[1].reason;
+}
+
 }  // namespace
 }  // namespace voxremesh

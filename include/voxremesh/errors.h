@@ -11,7 +11,8 @@ namespace voxremesh {
 /// line (0 when the error is not tied to a line) and the offending card or line text.
 class InputError : public std::runtime_error {
  public:
-  /// Builds "file:line: message" and, when card is not empty, "\n  card: <card>".
+  /// Builds "file:line: message" ("message" alone without file and line) and, when card is not
+  /// empty, "\n  card: <card>".
   InputError(std::string file, std::size_t line, const std::string& message, std::string card = {});
 
   const std::string& file() const noexcept { return file_; }

@@ -10,7 +10,7 @@ std::string describe(const std::string& file, std::size_t line, const std::strin
                      const std::string& card) {
   std::string text = file;
   if (line > 0) text += ":" + std::to_string(line);
-  text += ": " + message;
+  text += text.empty() ? message : ": " + message;  // no location: the message alone
   if (!card.empty()) text += "\n  card: " + card;
   return text;
 }
