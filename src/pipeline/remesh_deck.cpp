@@ -127,6 +127,13 @@ std::vector<std::unordered_set<Id>> partHardPoints(const FeModel& deck,
   return result;
 }
 
+/// The parts other than `part` with shells in `model` (ascending).
+std::vector<Id> otherParts(const FeModel& model, Id part) {
+  std::vector<Id> parts = shellPartIds(model);
+  parts.erase(std::remove(parts.begin(), parts.end(), part), parts.end());
+  return parts;
+}
+
 /// The parts with shells that `plans` leaves out (ascending IDs): they keep their elements.
 std::vector<Id> unplannedParts(const FeModel& deck, const std::vector<PartPlan>& plans) {
   std::vector<Id> planned;
@@ -138,18 +145,25 @@ std::vector<Id> unplannedParts(const FeModel& deck, const std::vector<PartPlan>&
   return result;
 }
 
-/// The plans (ascending indices) not kept in `report` whose part model holds a shell of a part of
-/// `newlyKept` (a neighbour sharing nodes): their seams along those parts must keep its nodes.
+/// The plans (ascending indices) to do again after a round: those other than `skip` (kept from the
+/// start) whose part model holds a shell of another part of `newlyKept` (a neighbour sharing
+/// nodes), since their seams along it must now keep its nodes; and the parts of `newlyKept` that
+/// have neighbours, tried again with all their seams fixed.
 std::vector<std::size_t> neighboursToRedo(const std::vector<FeModel>& models,
-                                          const RemeshReport& report, std::vector<Id> newlyKept) {
+                                          const std::vector<PartPlan>& plans,
+                                          const std::vector<std::uint8_t>& skip,
+                                          std::vector<Id> newlyKept) {
   std::sort(newlyKept.begin(), newlyKept.end());
   std::vector<std::size_t> redo;
   if (newlyKept.empty()) return redo;
   for (std::size_t i = 0; i < models.size(); ++i) {
-    if (report.parts[i].status == PartStatus::Kept) continue;
+    if (skip[i]) continue;
+    const Id part = plans[i].part;
+    const bool kept = std::binary_search(newlyKept.begin(), newlyKept.end(), part);
     const bool touches =
         std::any_of(models[i].shells.begin(), models[i].shells.end(), [&](const Shell& shell) {
-          return std::binary_search(newlyKept.begin(), newlyKept.end(), shell.part);
+          return shell.part != part &&
+                 (kept || std::binary_search(newlyKept.begin(), newlyKept.end(), shell.part));
         });
     if (touches) redo.push_back(i);
   }
@@ -196,30 +210,37 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
   const int threads =
       settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);
-  // Parts that keep their elements from the start: those not planned and those on solids.
-  std::vector<Id> kept = unplannedParts(deck, plans);
+  // Parts whose seams keep their nodes: from the start those not planned and those on solids,
+  // then every part kept in a round.
+  std::vector<Id> fixed = unplannedParts(deck, plans);
   std::vector<std::size_t> todo;
+  std::vector<std::uint8_t> keptFromStart(plans.size(), 0);
   for (std::size_t i = 0; i < plans.size(); ++i) {
     if (onSolids[i] == 0) {
       todo.push_back(i);
       continue;
     }
+    keptFromStart[i] = 1;
     RemeshedPart& part = report.parts[i];
     part.plan = plans[i];
     part.reason = std::to_string(onSolids[i]) + " of its " + std::to_string(plans[i].shells) +
                   " shells lie on faces of solid elements (remeshing would detach them)";
-    kept.push_back(plans[i].part);
+    fixed.push_back(plans[i].part);
     tell("extract", plans[i].part, true);
   }
-  std::sort(kept.begin(), kept.end());
-  // Rounds: the parts to do are remeshed with the seams along kept parts keeping their nodes;
-  // a neighbour of a part kept in this round is done again in the next.
+  std::sort(fixed.begin(), fixed.end());
+  // Rounds: the parts to do are remeshed with the seams along fixed parts keeping their nodes (a
+  // fixed part itself with all its seams fixed); the neighbours of a part kept in a round, and
+  // that part, are done again in the next.
   const std::vector<std::unordered_set<Id>> hardPoints = partHardPoints(deck, plans);
   for (bool first = true; !todo.empty(); first = false) {
     arena.execute([&] {
       tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t t) {
         const std::size_t i = todo[t];
-        const pipeline::PartSurroundings surroundings{junctionSpacing[i], kept, hardPoints[i]};
+        const bool isFixed = std::binary_search(fixed.begin(), fixed.end(), plans[i].part);
+        const pipeline::PartSurroundings surroundings{
+            junctionSpacing[i], isFixed ? otherParts(models[i], plans[i].part) : fixed,
+            hardPoints[i]};
         report.parts[i] =
             pipeline::remeshPart(models[i], plans[i], settings, surroundings, meshes[i],
                                  [&](const char* stage) { tell(stage, plans[i].part, false); });
@@ -228,10 +249,12 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
     });
     std::vector<Id> newlyKept;
     for (const std::size_t i : todo)
-      if (report.parts[i].status == PartStatus::Kept) newlyKept.push_back(plans[i].part);
-    todo = neighboursToRedo(models, report, newlyKept);
-    kept.insert(kept.end(), newlyKept.begin(), newlyKept.end());
-    std::sort(kept.begin(), kept.end());
+      if (report.parts[i].status == PartStatus::Kept &&
+          !std::binary_search(fixed.begin(), fixed.end(), plans[i].part))
+        newlyKept.push_back(plans[i].part);
+    todo = neighboursToRedo(models, plans, keptFromStart, newlyKept);
+    fixed.insert(fixed.end(), newlyKept.begin(), newlyKept.end());
+    std::sort(fixed.begin(), fixed.end());
   }
   std::vector<QuadMesh> accepted;
   for (std::size_t i = 0; i < plans.size(); ++i)
