@@ -1,6 +1,7 @@
 // The voxremesh command line, run as a subprocess: help, version, usage errors, info and convert.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
@@ -211,6 +212,54 @@ TEST(Cli, ConvertToObjAndBackKeepsTheCounts) {
   EXPECT_EQ(ascii.exitCode, 0);
   EXPECT_NE(ascii.err.find("warning: --ascii only affects STL and PLY"), std::string::npos)
       << ascii.err;
+}
+
+TEST(Cli, AnOutputThatIsTheInputIsRefusedAndTheInputStays) {
+  const fs::path dir = scratchDir("cli-overwrite-input");
+  writeText(dir / "in.k", sampleDeck());
+  for (const std::string& command :
+       {"convert " + quoted(dir / "in.k") + " " + quoted(dir / "in.k"),
+        "convert " + quoted(dir / "in.k") + " " + quoted(dir / "." / "in.k"),
+        "remesh " + quoted(dir / "in.k") + " -o " + quoted(dir / "in.k"),
+        "remesh " + quoted(dir / "in.k") + " -o " + quoted(dir / "out.k") + " --report " +
+            quoted(dir / "in.k")}) {
+    const CliRun run = runCliSplit(command);
+    EXPECT_EQ(run.exitCode, 1) << command;
+    EXPECT_NE(run.err.find("is the input"), std::string::npos) << run.err;
+    EXPECT_EQ(readText(dir / "in.k"), sampleDeck());
+  }
+}
+
+TEST(Cli, AFeatureAngleOutsideZeroTo180IsRefusedBeforeTheDeckIsRead) {
+  const fs::path dir = scratchDir("cli-feature-angle");
+  for (const std::string& command : {"remesh " + quoted(dir / "missing.k") + " -o " +
+                                         quoted(dir / "out.k") + " --feature-angle 400",
+                                     "voxelize " + quoted(dir / "missing.k") + " -o " +
+                                         quoted(dir / "out.vdb") + " --feature-angle -5"}) {
+    const CliRun run = runCliSplit(command);
+    EXPECT_EQ(run.exitCode, 1) << command;
+    EXPECT_NE(run.err.find("--feature-angle must be an angle from 0 to 180 degrees"),
+              std::string::npos)
+        << run.err;
+  }
+}
+
+TEST(Cli, NonFiniteCoordinatesAreRefusedAtTheirLine) {
+  const fs::path dir = scratchDir("cli-nan");
+  // Each deck and the line of its bad node.
+  const std::vector<std::array<std::string, 3>> decks{
+      {"nan.k", "*KEYWORD\n*NODE\n1,0,0,0\n2,nan,0,0\n3,1,1,0\n*ELEMENT_SHELL\n1,1,1,2,3\n*END\n",
+       ":4:"},
+      {"inf.inp",
+       "*NODE\n1, 0., 0., 0.\n2, 1., inf, 0.\n3, 1., 1., 0.\n*ELEMENT, TYPE=S3\n1, 1, 2, 3\n",
+       ":3:"},
+      {"nan.obj", "v 0 0 0\nv 1 0 NaN\nv 1 1 0\nf 1 2 3\n", ":2:"}};
+  for (const auto& [name, text, line] : decks) {
+    writeText(dir / name, text);
+    const CliRun run = runCliSplit("info " + quoted(dir / name));
+    EXPECT_EQ(run.exitCode, 1) << name << ": " << run.out;
+    EXPECT_NE(run.err.find(name + line), std::string::npos) << run.err;
+  }
 }
 
 TEST(Cli, FailedConvertLeavesNoOutputFile) {

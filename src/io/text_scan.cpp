@@ -87,7 +87,7 @@ bool parseReal(std::string_view text, double& out, double fallback) {
   if (text.front() == '+') text.remove_prefix(1);
   const char* end = text.data() + text.size();
   auto [ptr, ec] = std::from_chars(text.data(), end, out);
-  if (ec == std::errc() && ptr == end) return true;
+  if (ec == std::errc() && ptr == end) return std::isfinite(out);  // "nan", "inf": no number
   // Rewrite Fortran and Nastran forms into a plain one: D exponents, implicit exponents.
   char buffer[80];
   if (text.size() + 2 > sizeof buffer) return false;

@@ -60,7 +60,8 @@ std::string_view field(std::string_view line, std::size_t start, std::size_t wid
 bool parseInt(std::string_view text, std::int64_t& out, std::int64_t fallback = 0);
 
 /// Parses a real field in any form solvers write: 1.5, -2e3, 1.5D+3, 1.-3, +.5, 7. Surrounding
-/// blanks allowed. An empty field yields `fallback`. Returns false when the field is not a number.
+/// blanks allowed. An empty field yields `fallback`. Returns false when the field is not a finite
+/// number (NaN and infinities, which no solver accepts, are refused).
 bool parseReal(std::string_view text, double& out, double fallback = 0.0);
 
 /// Case-insensitive comparison of ASCII strings.

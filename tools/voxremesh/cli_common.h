@@ -6,11 +6,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <initializer_list>
 #include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -137,6 +139,26 @@ inline ParsedArgs parseArgs(const std::vector<std::string>& args,
 
 /// Parses the value of a numeric option. Throws SettingError naming the option when `text` is not
 /// a finite number.
+inline double parseNumber(const std::string& option, const std::string& text);
+
+/// The value of an angle option (degrees, 0..180). Throws SettingError naming the option
+/// otherwise.
+inline double parseAngle(const std::string& option, const std::string& text) {
+  const double value = parseNumber(option, text);
+  if (!(value >= 0.0 && value <= 180.0))
+    throw SettingError(option + " must be an angle from 0 to 180 degrees, not " + text);
+  return value;
+}
+
+/// Throws SettingError when `output` (given with `what`, as "-o") names the file `input`: the
+/// input would be replaced by the output without a word.
+inline void refuseOverwritingInput(const std::string& input, const std::string& output,
+                                   const std::string& what) {
+  std::error_code error;
+  if (std::filesystem::equivalent(input, output, error))
+    throw SettingError(what + " " + output + " is the input " + input + ": write to another file");
+}
+
 inline double parseNumber(const std::string& option, const std::string& text) {
   errno = 0;
   char* end = nullptr;

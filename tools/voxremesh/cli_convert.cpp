@@ -40,6 +40,7 @@ int runConvert(const std::vector<std::string>& args) {
       parseArgs(args, {{"--from", true}, {"--to", true}, {"--ascii", false}}, 2, 2, kUsage);
   const std::string& in = parsed.positional[0];
   const std::string& out = parsed.positional[1];
+  refuseOverwritingInput(in, out, "OUT");
   ReadOptions readOptions;
   if (const auto from = parsed.value("--from")) readOptions.format = formatFromName(*from);
   // Decide the target format before reading, so that a bad name fails at once.

@@ -190,7 +190,7 @@ int runRemesh(const std::vector<std::string>& args) {
   }
   settings.optimize = !parsed.has("--no-optimize");
   if (const auto angle = parsed.value("--feature-angle"))
-    settings.sheets.featureAngleDeg = parseNumber("--feature-angle", *angle);
+    settings.sheets.featureAngleDeg = parseAngle("--feature-angle", *angle);
   if (const auto threads = parsed.value("--threads")) {
     const long long value = parseInteger("--threads", *threads);
     if (value < 0 || value > 4096) throw SettingError("--threads must be within 0..4096");
@@ -198,6 +198,10 @@ int runRemesh(const std::vector<std::string>& args) {
   }
   formatFromPath(*output);  // an unknown extension fails before any work
   const auto vtu = parsed.value("--vtu");
+  refuseOverwritingInput(parsed.positional[0], *output, "-o");
+  if (vtu) refuseOverwritingInput(parsed.positional[0], *vtu, "--vtu");
+  if (const auto report = parsed.value("--report"))
+    refuseOverwritingInput(parsed.positional[0], *report, "--report");
   if (vtu && formatFromPath(*vtu) != DeckFormat::Vtu)
     throw SettingError("--vtu needs a .vtu file, not " + *vtu);
 

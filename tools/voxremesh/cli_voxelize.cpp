@@ -108,7 +108,7 @@ int runVoxelize(const std::vector<std::string>& args) {
   const VolumeSettings settings = volumeSettings(parsed);
   SheetSettings sheetSettings;
   if (const auto angle = parsed.value("--feature-angle"))
-    sheetSettings.featureAngleDeg = parseNumber("--feature-angle", *angle);
+    sheetSettings.featureAngleDeg = parseAngle("--feature-angle", *angle);
   ReadOptions readOptions;
   if (const auto format = parsed.value("--format")) readOptions.format = formatFromName(*format);
   const std::filesystem::path out = *output;
