@@ -262,6 +262,25 @@ TEST(Cli, NonFiniteCoordinatesAreRefusedAtTheirLine) {
   }
 }
 
+TEST(Cli, AFolderOrDeviceGivenAsAFileIsRefusedByName) {
+  const fs::path dir = scratchDir("cli-not-a-file");
+  fs::create_directories(dir / "folder");
+  fs::create_directories(dir / "folder.k");
+  writeText(dir / "zero.inp", "*INCLUDE, INPUT=/dev/zero\n*NODE\n1, 0., 0., 0.\n");
+  writeText(dir / "zero.k", "*KEYWORD\n*INCLUDE\n/dev/zero\n*END\n");
+  for (const std::string& command :
+       {"batch " + quoted(dir / "folder"), "-config " + quoted(dir / "folder"),
+        "info " + quoted(dir / "folder.k"), "info " + quoted(dir / "zero.inp"),
+        "info " + quoted(dir / "zero.k")}) {
+    const CliRun run = runCliSplit(command);
+    EXPECT_EQ(run.exitCode, 1) << command;
+    EXPECT_TRUE(run.err.find("not a regular file") != std::string::npos ||
+                run.err.find("not found as a regular file") != std::string::npos ||
+                run.err.find("is a folder, not a file") != std::string::npos)
+        << command << ": " << run.err;
+  }
+}
+
 TEST(Cli, FailedConvertLeavesNoOutputFile) {
   const fs::path dir = scratchDir("cli-convert-fail");
   writeText(dir / "bad.k", malformedDeck());

@@ -838,9 +838,9 @@ std::vector<std::array<double, 3>> junctionPositions(const QuadMesh& mesh) {
 /// and jittered (warped quads), a Free point on a junction point (a zero-area quad), a doublet and
 /// a split quad beside the junction, Free points jittered.
 QuadMesh junctionGrid() {
-  const int n = 6;
+  constexpr int n = 6;
   QuadMesh mesh = grid(n);
-  auto id = [n](int i, int j) { return static_cast<CornerIndex>(j * (n + 1) + i); };
+  auto id = [](int i, int j) { return static_cast<CornerIndex>(j * (n + 1) + i); };
   voxremesh::MeshCurve seam;
   seam.role = PointRole::Junction;
   for (int i = 1; i < n; ++i) {

@@ -91,9 +91,9 @@ QuadMesh badPair() {
 /// A 6 x 6 grid whose point (3, 3) is split into two points 0.4 apart joined by a thin quad
 /// between (3, 2) and (3, 4).
 QuadMesh splitPoint() {
-  const int n = 6;
+  constexpr int n = 6;
   QuadMesh mesh = fixedBoundaryGrid(n);
-  auto id = [n](int i, int j) { return CornerIndex(j * (n + 1) + i); };
+  auto id = [](int i, int j) { return CornerIndex(j * (n + 1) + i); };
   const CornerIndex left = id(3, 3);
   mesh.points[left] = {2.8, 3.0, 0.0};
   const CornerIndex right = CornerIndex(mesh.points.size());

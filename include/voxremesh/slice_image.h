@@ -43,11 +43,11 @@ Axis axisFromName(const std::string& name);
 struct Rgb {
   std::uint8_t r = 0, g = 0, b = 0;
   /// Component-wise equality.
-  friend bool operator==(const Rgb& a, const Rgb& b) {
-    return a.r == b.r && a.g == b.g && a.b == b.b;
+  friend bool operator==(const Rgb& lhs, const Rgb& rhs) {
+    return lhs.r == rhs.r && lhs.g == rhs.g && lhs.b == rhs.b;
   }
   /// Component-wise inequality.
-  friend bool operator!=(const Rgb& a, const Rgb& b) { return !(a == b); }
+  friend bool operator!=(const Rgb& lhs, const Rgb& rhs) { return !(lhs == rhs); }
 };
 
 /// How a slice is drawn. Every field has a documented default.

@@ -71,7 +71,9 @@ class FileReader {
   void addSettings(const Json& object, const std::string& what,
                    std::vector<std::pair<std::string, const Json*>>& into) const {
     if (object.type != Json::Type::Object) fail(object, what + " must be an object of settings");
-    for (const auto& [key, value] : object.members) {
+    for (const auto& member : object.members) {
+      const std::string& key = member.first;
+      const Json& value = member.second;
       if (value.type != Json::Type::Number && value.type != Json::Type::String)
         fail(value, "setting \"" + key + "\" in " + what + " must be a number or a string");
       into.erase(std::remove_if(into.begin(), into.end(),

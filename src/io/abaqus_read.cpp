@@ -170,10 +170,12 @@ class DeckLines {
   void openNamed(const std::string& name, const Location& at) {
     fs::path target(name);
     if (target.is_relative()) target = path().parent_path() / target;
-    if (!fs::exists(target) || fs::is_directory(target))
-      throw InputError(at.file, at.line,
-                       "file '" + name + "' not found (looked for " + target.string() + ")",
-                       at.card);
+    std::error_code error;
+    if (!fs::is_regular_file(target, error))
+      throw InputError(
+          at.file, at.line,
+          "file '" + name + "' not found as a regular file (looked for " + target.string() + ")",
+          at.card);
     const std::string id = identity(target);
     for (const auto& frame : frames_)
       if (frame->identity == id)

@@ -482,8 +482,10 @@ class DeckReader {
     if (found == candidates.end()) {
       std::string looked;
       for (const fs::path& p : candidates) looked += (looked.empty() ? "" : ", ") + p.string();
-      throw InputError(file.name, line,
-                       "include file '" + name + "' not found (looked for " + looked + ")", card);
+      throw InputError(
+          file.name, line,
+          "include file '" + name + "' not found as a regular file (looked for " + looked + ")",
+          card);
     }
     const fs::path canonical = fs::weakly_canonical(*found, ignored);
     if (std::find(includeStack_.begin(), includeStack_.end(), canonical) != includeStack_.end())

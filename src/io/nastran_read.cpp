@@ -687,7 +687,8 @@ class Reader {
     }
     if (!isFile(target))
       throw InputError(file.name, line,
-                       "INCLUDE file '" + name + "' not found (looked for " + target.string() + ")",
+                       "INCLUDE file '" + name + "' not found as a regular file (looked for " +
+                           target.string() + ")",
                        statement);
     const fs::path key = canonical(target);
     if (std::find(includeStack_.begin(), includeStack_.end(), key) != includeStack_.end())

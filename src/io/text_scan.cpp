@@ -11,6 +11,9 @@
 namespace voxremesh::io {
 
 std::string loadFile(const std::filesystem::path& path) {
+  std::error_code error;
+  if (std::filesystem::exists(path, error) && !std::filesystem::is_regular_file(path, error))
+    throw InputError(path.string(), 0, "not a regular file (a folder, a device or a pipe)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string(), 0, "cannot open file");
   in.seekg(0, std::ios::end);

@@ -12,7 +12,8 @@
 namespace voxremesh::io {
 
 /// Reads a whole file into memory.
-/// Throws InputError(file, 0) when it cannot be opened or read.
+/// Throws InputError(file, 0) when it is not a regular file (a folder, device or pipe), or cannot
+/// be opened or read.
 std::string loadFile(const std::filesystem::path& path);
 
 /// Throws InputError naming the line of the first NUL byte if `content` is not text (a binary
