@@ -163,45 +163,6 @@ TEST(Pipeline, RemeshDeckDoesNotDependOnTheThreadCount) {
 namespace voxremesh {
 namespace {
 
-TEST(Pipeline, PartsOfDifferentSizesStillShareTheirSeam) {
-  // Part 1: a 40 x 40 plate of 4-unit quads in z = 0; part 2: a 40 x 30 plate standing on its
-  // edge x = 40 (a 90-degree seam), 4 units along the seam and 6 up: their median edges (and so
-  // their target sizes) differ, yet both sides must place the same nodes on the seam.
-  FeModel model;
-  auto plateNode = [](int i, int j) { return Id(1 + j * 11 + i); };
-  for (int j = 0; j <= 10; ++j)
-    for (int i = 0; i <= 10; ++i)
-      test::addNode(model, plateNode(i, j), 4.0 * i + 0.31, 4.0 * j + 0.17, 0.23);
-  auto wallNode = [&](int k, int j) { return k == 0 ? plateNode(10, j) : Id(1000 + j * 6 + k); };
-  for (int j = 0; j <= 10; ++j)
-    for (int k = 1; k <= 5; ++k)
-      test::addNode(model, wallNode(k, j), 40.31, 4.0 * j + 0.17, 0.23 + 6.0 * k);
-  Id shell = 1;
-  for (int j = 0; j < 10; ++j)
-    for (int i = 0; i < 10; ++i)
-      test::addShell(
-          model, shell++, 1,
-          {plateNode(i, j), plateNode(i + 1, j), plateNode(i + 1, j + 1), plateNode(i, j + 1)});
-  for (int j = 0; j < 10; ++j)
-    for (int k = 0; k < 5; ++k)
-      test::addShell(
-          model, shell++, 2,
-          {wallNode(k, j), wallNode(k, j + 1), wallNode(k + 1, j + 1), wallNode(k + 1, j)});
-  RemeshSettings settings;
-  settings.partSizes = {{1, 4.0}, {2, 5.0}};
-  const std::vector<PartPlan> plans = planRemesh(model, settings);
-  ASSERT_EQ(plans.size(), 2u);
-  ASSERT_NE(plans[0].targetSize, plans[1].targetSize);
-  remeshDeck(model, settings);
-  std::set<Id> plateNodes, wallNodes;
-  for (const Shell& s : model.shells)
-    for (int c = 0; c < s.nodeCount; ++c)
-      (s.part == 1 ? plateNodes : wallNodes).insert(s.nodes[std::size_t(c)]);
-  std::size_t shared = 0;
-  for (const Id id : plateNodes) shared += wallNodes.count(id);
-  EXPECT_GE(shared, 9u) << "the seam of 40 units at the smaller size, 4: about 11 nodes";
-}
-
 /// A 40 x 40 plate of 4-unit quads (part 1) and a 40 x 30 wall of 4 x 6 quads standing on its
 /// edge x = 40 (part 2): the seam is the plate's 11 nodes plateNode(10, j).
 FeModel plateAndWall() {
@@ -238,6 +199,26 @@ std::size_t seamNodesShared(const FeModel& model) {
   for (const Id id : plate)
     if (wall.count(id) && id >= 11 && id <= 121 && id % 11 == 0) ++shared;
   return shared;
+}
+
+TEST(Pipeline, PartsOfDifferentSizesStillShareTheirSeam) {
+  // Part 1: a 40 x 40 plate of 4-unit quads in z = 0; part 2: a 40 x 30 plate standing on its
+  // edge x = 40 (a 90-degree seam), 4 units along the seam and 6 up: their median edges (and so
+  // their target sizes) differ, yet both sides must place the same nodes on the seam.
+  FeModel model = plateAndWall();
+  RemeshSettings settings;
+  settings.partSizes = {{1, 4.0}, {2, 5.0}};
+  const std::vector<PartPlan> plans = planRemesh(model, settings);
+  ASSERT_EQ(plans.size(), 2u);
+  ASSERT_NE(plans[0].targetSize, plans[1].targetSize);
+  remeshDeck(model, settings);
+  std::set<Id> plateNodes, wallNodes;
+  for (const Shell& s : model.shells)
+    for (int c = 0; c < s.nodeCount; ++c)
+      (s.part == 1 ? plateNodes : wallNodes).insert(s.nodes[std::size_t(c)]);
+  std::size_t shared = 0;
+  for (const Id id : plateNodes) shared += wallNodes.count(id);
+  EXPECT_GE(shared, 9u) << "the seam of 40 units at the smaller size, 4: about 11 nodes";
 }
 
 TEST(Pipeline, APartNotRemeshedKeepsEveryNodeOfItsSeam) {

@@ -82,16 +82,28 @@ std::vector<FeModel> partModels(const FeModel& deck, const std::vector<PartPlan>
   return models;
 }
 
-/// Per plan, the shells of the part that lie on faces of solid elements (all corners are nodes
-/// of solid elements).
-std::vector<std::size_t> shellsOnSolids(const FeModel& deck, const std::vector<PartPlan>& plans) {
+/// The index of each plan by its part.
+std::unordered_map<Id, std::size_t> planIndex(const std::vector<PartPlan>& plans) {
   std::unordered_map<Id, std::size_t> planOf;
   for (std::size_t i = 0; i < plans.size(); ++i) planOf[plans[i].part] = i;
+  return planOf;
+}
+
+/// The nodes the shells of the planned parts use.
+std::unordered_set<Id> plannedNodes(const FeModel& deck,
+                                    const std::unordered_map<Id, std::size_t>& planOf) {
   std::unordered_set<Id> nodes;
   for (const Shell& shell : deck.shells)
     if (planOf.count(shell.part))
       for (int c = 0; c < shell.nodeCount; ++c) nodes.insert(shell.nodes[std::size_t(c)]);
-  const std::unordered_set<Id> solid = solidElementNodes(deck, nodes);
+  return nodes;
+}
+
+/// Per plan, the shells of the part that lie on faces of solid elements (all corners are nodes
+/// of solid elements).
+std::vector<std::size_t> shellsOnSolids(const FeModel& deck, const std::vector<PartPlan>& plans) {
+  const std::unordered_map<Id, std::size_t> planOf = planIndex(plans);
+  const std::unordered_set<Id> solid = solidElementNodes(deck, plannedNodes(deck, planOf));
   std::vector<std::size_t> count(plans.size(), 0);
   if (solid.empty()) return count;
   for (const Shell& shell : deck.shells) {
@@ -108,13 +120,8 @@ std::vector<std::size_t> shellsOnSolids(const FeModel& deck, const std::vector<P
 /// Per plan, the nodes of its part's shells that other keywords use as points (hardPointNodes).
 std::vector<std::unordered_set<Id>> partHardPoints(const FeModel& deck,
                                                    const std::vector<PartPlan>& plans) {
-  std::unordered_map<Id, std::size_t> planOf;
-  for (std::size_t i = 0; i < plans.size(); ++i) planOf[plans[i].part] = i;
-  std::unordered_set<Id> nodes;
-  for (const Shell& shell : deck.shells)
-    if (planOf.count(shell.part))
-      for (int c = 0; c < shell.nodeCount; ++c) nodes.insert(shell.nodes[std::size_t(c)]);
-  const std::unordered_set<Id> hard = hardPointNodes(deck, nodes);
+  const std::unordered_map<Id, std::size_t> planOf = planIndex(plans);
+  const std::unordered_set<Id> hard = hardPointNodes(deck, plannedNodes(deck, planOf));
   std::vector<std::unordered_set<Id>> result(plans.size());
   if (hard.empty()) return result;
   for (const Shell& shell : deck.shells) {
