@@ -221,6 +221,23 @@ TEST(Pipeline, PartsOfDifferentSizesStillShareTheirSeam) {
   EXPECT_GE(shared, 9u) << "the seam of 40 units at the smaller size, 4: about 11 nodes";
 }
 
+TEST(Pipeline, DeckSeamsCountSharedNodesPerPartPairAndTJunctionEdges) {
+  FeModel model = plateAndWall();
+  DeckSeams seams = deckSeams(model);
+  ASSERT_EQ(seams.sharedNodes.size(), 1u);
+  EXPECT_EQ(seams.sharedNodes.at({1, 2}), 11u);
+  EXPECT_EQ(seams.tJunctionEdges, 0u);
+  // A fin of part 3 hanging down from the seam's first edge: a T-junction there, and part 3
+  // shares two nodes with each of the others.
+  test::addNode(model, 5000, 40.31, 0.17, -4.0);
+  test::addNode(model, 5001, 40.31, 4.17, -4.0);
+  test::addShell(model, 7000, 3, {11, 22, 5001, 5000});
+  seams = deckSeams(model);
+  EXPECT_EQ(seams.sharedNodes.at({1, 3}), 2u);
+  EXPECT_EQ(seams.sharedNodes.at({2, 3}), 2u);
+  EXPECT_EQ(seams.tJunctionEdges, 1u);
+}
+
 TEST(Pipeline, APartNotRemeshedKeepsEveryNodeOfItsSeam) {
   // Only the wall is remeshed, at 7 units: its seam to the plate, which keeps its elements, must
   // keep all 11 of the plate's seam nodes (at 7 units the seam alone would get 6 pieces).

@@ -20,6 +20,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "voxremesh/deck_assembly.h"
@@ -186,9 +187,21 @@ struct RemeshedPart {
 };
 
 /// What remeshDeck did.
+/// The seams of a deck: per pair of parts whose shells share nodes, how many; and the edges that
+/// three or more shells share (T-junctions).
+struct DeckSeams {
+  std::map<std::pair<Id, Id>, std::size_t> sharedNodes;  ///< key: (lower, higher) part ID
+  std::size_t tJunctionEdges = 0;
+};
+
+/// Counts the seams of a deck's shells. Deterministic.
+DeckSeams deckSeams(const FeModel& deck);
+
 struct RemeshReport {
   std::vector<RemeshedPart> parts;  ///< in plan order
   AssemblyReport assembly;
+  DeckSeams seamsBefore;  ///< the deck's seams before the remesh
+  DeckSeams seamsAfter;   ///< and after
   double assemblySeconds = 0.0;
   double totalSeconds = 0.0;
   /// Parts with the given status.

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <map>
 #include <mutex>
 #include <stdexcept>
 #include <unordered_map>
@@ -271,7 +272,9 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
   std::unordered_set<Id> allHardPoints;
   for (const std::unordered_set<Id>& part : hardPoints)
     allHardPoints.insert(part.begin(), part.end());
+  report.seamsBefore = deckSeams(deck);
   report.assembly = replacePartMeshes(deck, accepted, allHardPoints);
+  report.seamsAfter = deckSeams(deck);
   report.assemblySeconds = since(assemblyStart);
   report.totalSeconds = since(start);
   return report;
@@ -332,11 +335,28 @@ std::string remeshReportJson(const RemeshReport& report) {
                   static_cast<long long>(ref.node));
     out += buffer;
   }
-  std::snprintf(
-      buffer, sizeof buffer,
-      "\n  ],\n  \"removed_nodes\": %zu,\n  \"new_nodes\": %zu,\n  \"hard_points_kept\": %zu,\n"
-      "  \"seconds\": %.6f\n}\n",
-      assembly.removedNodes, assembly.newNodes, assembly.hardPointsKept, report.totalSeconds);
+  // Seams: every pair of parts that shared nodes before or after, with both counts.
+  out += "\n  ],\n  \"seams\": [";
+  std::map<std::pair<Id, Id>, std::pair<std::size_t, std::size_t>> pairs;
+  for (const auto& [key, count] : report.seamsBefore.sharedNodes) pairs[key].first = count;
+  for (const auto& [key, count] : report.seamsAfter.sharedNodes) pairs[key].second = count;
+  bool firstPair = true;
+  for (const auto& [key, counts] : pairs) {
+    std::snprintf(buffer, sizeof buffer,
+                  "%s\n    {\"parts\": [%lld, %lld], \"shared_nodes_in\": %zu, "
+                  "\"shared_nodes_out\": %zu}",
+                  firstPair ? "" : ",", static_cast<long long>(key.first),
+                  static_cast<long long>(key.second), counts.first, counts.second);
+    out += buffer;
+    firstPair = false;
+  }
+  std::snprintf(buffer, sizeof buffer,
+                "\n  ],\n  \"t_junction_edges_in\": %zu,\n  \"t_junction_edges_out\": %zu,\n"
+                "  \"removed_nodes\": %zu,\n  \"new_nodes\": %zu,\n  \"hard_points_kept\": %zu,\n"
+                "  \"seconds\": %.6f\n}\n",
+                report.seamsBefore.tJunctionEdges, report.seamsAfter.tJunctionEdges,
+                assembly.removedNodes, assembly.newNodes, assembly.hardPointsKept,
+                report.totalSeconds);
   return out + buffer;
 }
 

@@ -235,6 +235,11 @@ int runRemesh(const std::vector<std::string>& args) {
   for (const RemeshedPart& part : report.parts)
     if (part.status != PartStatus::Kept && !part.reason.empty())
       warnings.push_back("part " + std::to_string(part.plan.part) + ": " + part.reason);
+  for (const auto& [parts, count] : report.seamsBefore.sharedNodes)
+    if (report.seamsAfter.sharedNodes.count(parts) == 0)
+      warnings.push_back("parts " + std::to_string(parts.first) + " and " +
+                         std::to_string(parts.second) + " shared " + std::to_string(count) +
+                         " nodes and share none now");
   printWarnings(warnings);
 
   const double seconds =
