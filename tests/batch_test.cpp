@@ -109,6 +109,15 @@ TEST(Batch, JobFileExpansion) {
                                     "{\"size\": [1]}}]}"),
                        "must be a number or a string"));
   EXPECT_THROW(readBatchFile(dir / "nothing.json"), InputError);
+  // Two jobs writing one file, or a job writing over its input, would lose a result silently.
+  EXPECT_TRUE(contains(inputErrorOf(bad,
+                                    "{\"jobs\": [{\"task\": \"convert\", \"inputs\": "
+                                    "\"decks/*.k\", \"output\": \"out/all.obj\"}]}"),
+                       "jobs \"a\" and \"b\" both write"));
+  EXPECT_TRUE(contains(inputErrorOf(bad,
+                                    "{\"jobs\": [{\"task\": \"convert\", \"input\": "
+                                    "\"decks/a.k\", \"output\": \"decks/./a.k\"}]}"),
+                       "would write over its input"));
 }
 
 TEST(Batch, BrokenJobsFailAloneAndShardsSplitTheWork) {

@@ -226,6 +226,11 @@ TEST(RemeshCli, BadInputEndsWithAMessageAndNoOutput) {
   EXPECT_TRUE(contains(missing.output, "none.k")) << missing.output;
   EXPECT_FALSE(fs::exists(dir / "a.k"));
   EXPECT_FALSE(fs::exists(dir / "a.xyz"));
+  // A report that cannot be written (its folder is missing): no deck output stays either.
+  const auto noReport = runCli("remesh " + quoted(sample) + " -o " + quoted(dir / "a.k") +
+                               " --report " + quoted(dir / "missing" / "r.json"));
+  EXPECT_EQ(noReport.exitCode, 1) << noReport.output;
+  EXPECT_FALSE(fs::exists(dir / "a.k"));
 }
 
 TEST(RemeshCli, ShellsOnASolidMeshEndQuicklyWithinAnAddressSpaceLimit) {

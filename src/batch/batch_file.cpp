@@ -2,6 +2,7 @@
 #include <fnmatch.h>
 
 #include <algorithm>
+#include <map>
 #include <set>
 #include <string>
 
@@ -45,7 +46,24 @@ class FileReader {
     if (jobs->type != Json::Type::Array || jobs->items.empty())
       fail(*jobs, "\"jobs\" must be a non-empty list of job objects");
     for (const Json& job : jobs->items) expand(job, defaults, file.jobs);
+    refuseSharedOutputs(*jobs, file.jobs);
     return file;
+  }
+
+  /// Fails when two jobs write the same output, or a job writes over its input: the later result
+  /// would replace the earlier one (or the input) while every job reported success.
+  void refuseSharedOutputs(const Json& where, const std::vector<BatchJob>& jobs) const {
+    std::map<fs::path, std::size_t> writer;
+    for (const BatchJob& job : jobs) {
+      if (!job.problem.empty()) continue;
+      const fs::path output = job.output.lexically_normal();
+      if (output == job.input.lexically_normal())
+        fail(where, "job \"" + job.name + "\" would write over its input " + job.input.string());
+      const auto [it, added] = writer.emplace(output, job.index);
+      if (!added)
+        fail(where, "jobs \"" + jobs[it->second].name + "\" and \"" + job.name + "\" both write " +
+                        job.output.string());
+    }
   }
 
  private:

@@ -217,14 +217,21 @@ int runRemesh(const std::vector<std::string>& args) {
       });
   warnings.clear();
   writeDeck(deck, *output, {}, &warnings);
-  if (vtu) {
-    progress.update("quality", "deck", 1.0);
-    std::vector<PartQuality> quality;
-    tbb::task_arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic)
-        .execute([&] { quality = assessRemeshedParts(*original, deck, report); });
-    writeRemeshQualityVtu(deck, quality, *vtu);
+  try {  // the outputs are one result: none stays when one cannot be written
+    if (vtu) {
+      progress.update("quality", "deck", 1.0);
+      std::vector<PartQuality> quality;
+      tbb::task_arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic)
+          .execute([&] { quality = assessRemeshedParts(*original, deck, report); });
+      writeRemeshQualityVtu(deck, quality, *vtu);
+    }
+    if (const auto path = parsed.value("--report")) writeRemeshReport(report, *path);
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(*output, ignored);
+    if (vtu) std::filesystem::remove(*vtu, ignored);
+    throw;
   }
-  if (const auto path = parsed.value("--report")) writeRemeshReport(report, *path);
   progress.clear();
   for (const UnmappedReference& ref : report.assembly.unmapped)
     warnings.push_back(ref.keyword + " (" +
