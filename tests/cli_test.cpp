@@ -281,6 +281,22 @@ TEST(Cli, AFolderOrDeviceGivenAsAFileIsRefusedByName) {
   }
 }
 
+TEST(Cli, IdsThatAreNotPositiveAreRefusedAtTheirLine) {
+  const fs::path dir = scratchDir("cli-negative-ids");
+  const std::string nodes = "*KEYWORD\n*NODE\n1,0,0,0\n2,1,0,0\n3,1,1,0\n*ELEMENT_SHELL\n";
+  const std::vector<std::array<std::string, 3>> decks{
+      {"element.k", nodes + "-5,1,1,2,3\n*END\n", ":7: element ID -5 is not positive"},
+      {"part.k", nodes + "5,-1,1,2,3\n*END\n", ":7: part ID -1 of element 5 is not positive"},
+      {"element.bdf", "GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\nGRID,3,,1.,1.,0.\nCTRIA3,-4,1,1,2,3\n",
+       ":4: element ID -4 is not positive"}};
+  for (const auto& [name, text, message] : decks) {
+    writeText(dir / name, text);
+    const CliRun run = runCliSplit("info " + quoted(dir / name));
+    EXPECT_EQ(run.exitCode, 1) << name << ": " << run.out;
+    EXPECT_NE(run.err.find(name + message), std::string::npos) << run.err;
+  }
+}
+
 TEST(Cli, FailedConvertLeavesNoOutputFile) {
   const fs::path dir = scratchDir("cli-convert-fail");
   writeText(dir / "bad.k", malformedDeck());

@@ -47,6 +47,9 @@ void checkModel(const FeModel& model, const SourceMap& sources) {
   std::unordered_map<Id, std::size_t> nodeIndex;
   nodeIndex.reserve(model.nodes.size());
   for (std::size_t i = 0; i < model.nodes.size(); ++i) {
+    if (model.nodes[i].id <= 0)
+      throw InputError(sources.nodeFile(i), sources.nodeLine(i),
+                       "node ID " + std::to_string(model.nodes[i].id) + " is not positive");
     const auto [it, inserted] = nodeIndex.emplace(model.nodes[i].id, i);
     if (!inserted) {
       throw InputError(sources.nodeFile(i), sources.nodeLine(i),
@@ -58,6 +61,13 @@ void checkModel(const FeModel& model, const SourceMap& sources) {
   shellIndex.reserve(model.shells.size());
   for (std::size_t i = 0; i < model.shells.size(); ++i) {
     const Shell& shell = model.shells[i];
+    if (shell.id <= 0)
+      throw InputError(sources.shellFile(i), sources.shellLine(i),
+                       "element ID " + std::to_string(shell.id) + " is not positive");
+    if (shell.part <= 0)
+      throw InputError(sources.shellFile(i), sources.shellLine(i),
+                       "part ID " + std::to_string(shell.part) + " of element " +
+                           std::to_string(shell.id) + " is not positive");
     const auto [it, inserted] = shellIndex.emplace(shell.id, i);
     if (!inserted)
       throw InputError(sources.shellFile(i), sources.shellLine(i),

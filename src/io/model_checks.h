@@ -46,8 +46,9 @@ std::vector<Id> addUndefinedParts(FeModel& model);
 /// "1, 2, 3, ..." of at most `shown` IDs, for messages.
 std::string listIds(const std::vector<Id>& ids, std::size_t shown = 10);
 
-/// Checks IDs and references after reading: duplicate node IDs, duplicate shell IDs, shells naming
-/// a node the deck does not define, shells naming one node twice.
+/// Checks IDs and references after reading: node, shell and part IDs that are not positive,
+/// duplicate node IDs, duplicate shell IDs, shells naming a node the deck does not define, shells
+/// naming one node twice.
 /// Throws InputError naming the file and line of the offending card (and of the first definition
 /// for duplicates).
 void checkModel(const FeModel& model, const SourceMap& sources);
