@@ -297,6 +297,17 @@ TEST(Cli, IdsThatAreNotPositiveAreRefusedAtTheirLine) {
   }
 }
 
+TEST(Cli, CoordinatesTooLargeToMeasureAreSaidSo) {
+  const fs::path dir = scratchDir("cli-huge-coordinates");
+  writeText(dir / "big.k",
+            "*KEYWORD\n*NODE\n1,0,0,0\n2,1e307,0,0\n3,1,1,0\n4,0,1,0\n*ELEMENT_SHELL\n"
+            "1,1,1,2,3,4\n*END\n");
+  const CliRun run = runCliSplit("remesh " + quoted(dir / "big.k") + " -o " + quoted(dir / "o.k"));
+  EXPECT_EQ(run.exitCode, 1) << run.out;
+  EXPECT_NE(run.err.find("too long to measure"), std::string::npos) << run.err;
+  EXPECT_FALSE(fs::exists(dir / "o.k"));
+}
+
 TEST(Cli, FailedConvertLeavesNoOutputFile) {
   const fs::path dir = scratchDir("cli-convert-fail");
   writeText(dir / "bad.k", malformedDeck());

@@ -76,6 +76,10 @@ double medianEdge(const FeModel& model, const std::unordered_map<Id, std::size_t
              2;
   if (!(median > 0))
     throw std::invalid_argument("the shells of " + what + " have zero-length sides only");
+  if (!std::isfinite(median))
+    throw std::invalid_argument("the median side of the shells of " + what +
+                                " is too long to measure (coordinates near the largest number "
+                                "a double holds); no element size can be chosen for it");
   return median;
 }
 
