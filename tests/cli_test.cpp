@@ -244,6 +244,17 @@ TEST(Cli, AFeatureAngleOutsideZeroTo180IsRefusedBeforeTheDeckIsRead) {
   }
 }
 
+/// Writes each deck {name, text, expected} into `dir` and expects `info` on it to exit 1 with an
+/// error holding the deck's name followed by `expected` (":LINE:" and the message).
+void expectInfoRefuses(const fs::path& dir, const std::vector<std::array<std::string, 3>>& decks) {
+  for (const auto& [name, text, expected] : decks) {
+    writeText(dir / name, text);
+    const CliRun run = runCliSplit("info " + quoted(dir / name));
+    EXPECT_EQ(run.exitCode, 1) << name << ": " << run.out;
+    EXPECT_NE(run.err.find(name + expected), std::string::npos) << run.err;
+  }
+}
+
 TEST(Cli, NonFiniteCoordinatesAreRefusedAtTheirLine) {
   const fs::path dir = scratchDir("cli-nan");
   // Each deck and the line of its bad node.
@@ -254,12 +265,7 @@ TEST(Cli, NonFiniteCoordinatesAreRefusedAtTheirLine) {
        "*NODE\n1, 0., 0., 0.\n2, 1., inf, 0.\n3, 1., 1., 0.\n*ELEMENT, TYPE=S3\n1, 1, 2, 3\n",
        ":3:"},
       {"nan.obj", "v 0 0 0\nv 1 0 NaN\nv 1 1 0\nf 1 2 3\n", ":2:"}};
-  for (const auto& [name, text, line] : decks) {
-    writeText(dir / name, text);
-    const CliRun run = runCliSplit("info " + quoted(dir / name));
-    EXPECT_EQ(run.exitCode, 1) << name << ": " << run.out;
-    EXPECT_NE(run.err.find(name + line), std::string::npos) << run.err;
-  }
+  expectInfoRefuses(dir, decks);
 }
 
 TEST(Cli, AFolderOrDeviceGivenAsAFileIsRefusedByName) {
@@ -289,12 +295,7 @@ TEST(Cli, IdsThatAreNotPositiveAreRefusedAtTheirLine) {
       {"part.k", nodes + "5,-1,1,2,3\n*END\n", ":7: part ID -1 of element 5 is not positive"},
       {"element.bdf", "GRID,1,,0.,0.,0.\nGRID,2,,1.,0.,0.\nGRID,3,,1.,1.,0.\nCTRIA3,-4,1,1,2,3\n",
        ":4: element ID -4 is not positive"}};
-  for (const auto& [name, text, message] : decks) {
-    writeText(dir / name, text);
-    const CliRun run = runCliSplit("info " + quoted(dir / name));
-    EXPECT_EQ(run.exitCode, 1) << name << ": " << run.out;
-    EXPECT_NE(run.err.find(name + message), std::string::npos) << run.err;
-  }
+  expectInfoRefuses(dir, decks);
 }
 
 TEST(Cli, CoordinatesTooLargeToMeasureAreSaidSo) {
