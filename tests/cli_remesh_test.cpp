@@ -244,7 +244,7 @@ TEST(RemeshCli, ShellsOnASolidMeshEndQuicklyWithinAnAddressSpaceLimit) {
                      quoted(deck) + " -o " + quoted(dir / "out.bdf") + " --quiet 2>&1");
   EXPECT_EQ(run.exitCode, 3) << run.output;
   EXPECT_TRUE(contains(run.output,
-                       "part 10000 kept: 8388 of its 8388 shells lie on faces of "
+                       "part 10000 kept: its 8388 shells lie on faces of "
                        "solid elements"))
       << run.output;
   EXPECT_EQ(readDeck(dir / "out.bdf").shells.size(), readDeck(deck).shells.size());

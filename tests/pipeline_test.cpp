@@ -276,10 +276,9 @@ TEST(Pipeline, ANeighbourOfAPartKeptAfterItsAttemptIsRemeshedAgainAlongItsSeam) 
   EXPECT_EQ(seamNodesShared(model), 11u);
 }
 
-TEST(Pipeline, HardPointsKeepTheirIdAndCoordinatesAndSetsAreNoHardPoints) {
-  // A 12 x 12 plate of unit quads (node (i, j): ID 1 + 13 j + i). A mass on the inner node
-  // (5, 6) and a history node on the edge node (0, 4) are hard points; the node set of the whole
-  // plate is a region, not hard points.
+/// An LS-DYNA deck up to its shells: a 12 x 12 plate of unit quads in part 1 (node (i, j): ID
+/// 1 + 13 j + i at (i + 0.013, j + 0.007, 0); shell (i, j): ID 1 + 12 j + i).
+std::string unitPlateDeck() {
   std::string deck = "*KEYWORD\n*NODE\n";
   char line[128];
   for (int j = 0; j <= 12; ++j)
@@ -296,6 +295,14 @@ TEST(Pipeline, HardPointsKeepTheirIdAndCoordinatesAndSetsAreNoHardPoints) {
                     a + 13);
       deck += line;
     }
+  return deck;
+}
+
+TEST(Pipeline, HardPointsKeepTheirIdAndCoordinatesAndSetsAreNoHardPoints) {
+  // A 12 x 12 plate of unit quads (node (i, j): ID 1 + 13 j + i). A mass on the inner node
+  // (5, 6) and a history node on the edge node (0, 4) are hard points; the node set of the whole
+  // plate is a region, not hard points.
+  std::string deck = unitPlateDeck();
   deck += "*SET_NODE_LIST_GENERATE\n         7\n         1       169\n";
   deck += "*ELEMENT_MASS\n   90000      84             1.0       0\n";
   deck += "*DATABASE_HISTORY_NODE\n      53\n*END\n";
@@ -325,6 +332,56 @@ TEST(Pipeline, HardPointsKeepTheirIdAndCoordinatesAndSetsAreNoHardPoints) {
     }
   EXPECT_GE(shellsOnHardPoints, 3u);
   EXPECT_EQ(shellsOnOtherOldNodes, 0u) << "the set's nodes are a region: all replaced";
+}
+
+TEST(Pipeline, ShellsOnASolidStayAndTheRestOfTheirPartIsRemeshedAroundThem) {
+  // The plate's corner quad (shell 1, nodes 1 2 15 14) is the top face of a hexahedron: it stays
+  // with its nodes and part, and the rest of the plate is remeshed sharing its two inner sides.
+  std::string deck = unitPlateDeck();
+  deck += "*NODE\n";
+  const int below[4] = {1, 2, 15, 14};
+  char line[128];
+  for (int k = 0; k < 4; ++k) {
+    std::snprintf(line, sizeof line, "%8d%16.3f%16.3f%16.3f\n", 500 + k,
+                  (k == 1 || k == 2 ? 1.0 : 0.0) + 0.013, (k >= 2 ? 1.0 : 0.0) + 0.007, -1.0);
+    deck += line;
+  }
+  deck += "*ELEMENT_SOLID\n";
+  std::snprintf(line, sizeof line, "%8d%8d%8d%8d%8d%8d%8d%8d%8d%8d\n", 900, 2, 500, 501, 502, 503,
+                below[0], below[1], below[2], below[3]);
+  deck += line;
+  deck += "*END\n";
+  const auto dir = test::scratchDir("shells_on_solid");
+  test::writeText(dir / "in.k", deck);
+  FeModel model = readDeck(dir / "in.k");
+  RemeshSettings settings;
+  settings.targetSize = 1.7;
+  const RemeshReport report = remeshDeck(model, settings);
+  ASSERT_EQ(report.parts.size(), 1u);
+  ASSERT_NE(report.parts[0].status, PartStatus::Kept) << report.parts[0].reason;
+  EXPECT_NE(report.parts[0].reason.find("1 of its 144 shells lie on faces of solid elements and "
+                                        "are kept"),
+            std::string::npos)
+      << report.parts[0].reason;
+  const Shell* corner = nullptr;
+  std::size_t otherShellsOnItsInnerNodes = 0;
+  for (const Shell& shell : model.shells) {
+    if (shell.id == 1) {
+      corner = &shell;
+      continue;
+    }
+    for (int c = 0; c < shell.nodeCount; ++c) {
+      const Id node = shell.nodes[std::size_t(c)];
+      otherShellsOnItsInnerNodes += node == 2 || node == 15 || node == 14;
+    }
+  }
+  ASSERT_NE(corner, nullptr);
+  EXPECT_EQ(corner->part, 1);
+  EXPECT_EQ(corner->nodes, (std::array<Id, 4>{1, 2, 15, 14}));
+  EXPECT_GE(otherShellsOnItsInnerNodes, 4u) << "the rest of the plate shares the seam nodes";
+  std::set<Id> parts;
+  for (const Shell& shell : model.shells) parts.insert(shell.part);
+  EXPECT_EQ(parts, std::set<Id>{1}) << "no held part ID is left in the deck";
 }
 
 TEST(Pipeline, APartWithADuplicateElementIsKeptNamingBothShells) {

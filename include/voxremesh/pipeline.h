@@ -218,8 +218,9 @@ using RemeshProgress = std::function<void(const std::string& stage, Id part, dou
 /// Remeshes the planned parts of a deck in place (see the top of the file): parts in parallel
 /// within settings.threads, then one assembly of the accepted meshes. A part error never stops
 /// the deck: each part ends remeshed, retried at a finer voxel, or kept (its shells unchanged)
-/// with the reason. A part whose shells lie on faces of solid elements is kept (remeshing it
-/// would detach them). The result does not depend on the thread count.
+/// with the reason. Shells that lie on faces of solid elements stay as they are (remeshing them
+/// would detach them); the rest of their part is remeshed around them, sharing their nodes, and
+/// a part made of such shells only is kept. The result does not depend on the thread count.
 /// @param deck      the deck as readDeck returns it; its accepted parts replaced
 /// @param settings  see RemeshSettings
 /// @param progress  optional progress callback

@@ -100,23 +100,60 @@ std::unordered_set<Id> plannedNodes(const FeModel& deck,
   return nodes;
 }
 
-/// Per plan, the shells of the part that lie on faces of solid elements (all corners are nodes
-/// of solid elements).
-std::vector<std::size_t> shellsOnSolids(const FeModel& deck, const std::vector<PartPlan>& plans) {
+/// Per plan, the indices (into deck.shells) of the part's shells that lie on faces of solid
+/// elements (all corners are nodes of solid elements).
+std::vector<std::vector<std::size_t>> shellsOnSolids(const FeModel& deck,
+                                                     const std::vector<PartPlan>& plans) {
   const std::unordered_map<Id, std::size_t> planOf = planIndex(plans);
   const std::unordered_set<Id> solid = solidElementNodes(deck, plannedNodes(deck, planOf));
-  std::vector<std::size_t> count(plans.size(), 0);
-  if (solid.empty()) return count;
-  for (const Shell& shell : deck.shells) {
+  std::vector<std::vector<std::size_t>> onSolids(plans.size());
+  if (solid.empty()) return onSolids;
+  for (std::size_t s = 0; s < deck.shells.size(); ++s) {
+    const Shell& shell = deck.shells[s];
     const auto it = planOf.find(shell.part);
     if (it == planOf.end()) continue;
     bool onSolid = true;
     for (int c = 0; c < shell.nodeCount && onSolid; ++c)
       onSolid = solid.count(shell.nodes[std::size_t(c)]) > 0;
-    if (onSolid) ++count[it->second];
+    if (onSolid) onSolids[it->second].push_back(s);
   }
-  return count;
+  return onSolids;
 }
+
+/// Shells of remeshed parts that stay as they are: while the deck is remeshed they carry a part
+/// ID of their own (above every part ID of the deck), so that they count as a kept neighbour whose
+/// seam nodes the rest of their part keeps; `restore` (or the destructor, when the remesh throws)
+/// gives them their part back.
+class HeldShells {
+ public:
+  explicit HeldShells(FeModel& deck) : deck_(deck) {}
+  HeldShells(const HeldShells&) = delete;
+  HeldShells& operator=(const HeldShells&) = delete;
+  ~HeldShells() { restore(); }
+
+  /// Gives the shells of `plan` listed in `shells` (indices into deck.shells) a held part ID.
+  void hold(const PartPlan& plan, const std::vector<std::size_t>& shells) {
+    Id held = 1;
+    for (const Shell& shell : deck_.shells) held = std::max(held, shell.part + 1);
+    for (const Part& part : deck_.parts) held = std::max(held, part.id + 1);
+    partOfHeld_[held] = plan.part;
+    for (const std::size_t s : shells) deck_.shells[s].part = held;
+  }
+
+  /// Gives every held shell its own part again (once).
+  void restore() {
+    if (partOfHeld_.empty()) return;
+    for (Shell& shell : deck_.shells) {
+      const auto it = partOfHeld_.find(shell.part);
+      if (it != partOfHeld_.end()) shell.part = it->second;
+    }
+    partOfHeld_.clear();
+  }
+
+ private:
+  FeModel& deck_;
+  std::unordered_map<Id, Id> partOfHeld_;  ///< held part ID -> the part the shells belong to
+};
 
 /// Per plan, the nodes of its part's shells that other keywords use as points (hardPointNodes).
 std::vector<std::unordered_set<Id>> partHardPoints(const FeModel& deck,
@@ -203,9 +240,6 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
   RemeshReport report;
   const std::vector<PartPlan> plans = planRemesh(deck, settings);
   report.parts.resize(plans.size());
-  std::vector<double> junctionSpacing;
-  const std::vector<FeModel> models = partModels(deck, plans, junctionSpacing);
-  const std::vector<std::size_t> onSolids = shellsOnSolids(deck, plans);
   std::vector<QuadMesh> meshes(plans.size());
   std::mutex progressMutex;
   std::size_t done = 0;
@@ -218,23 +252,36 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
   const int threads =
       settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency();
   tbb::task_arena arena(threads);
-  // Parts whose seams keep their nodes: from the start those not planned and those on solids,
-  // then every part kept in a round.
-  std::vector<Id> fixed = unplannedParts(deck, plans);
-  std::vector<std::size_t> todo;
+  // Shells on faces of solid elements stay: a part made of them only is kept, the shells of a
+  // part with others are held (a kept neighbour of the rest of their part).
+  report.seamsBefore = deckSeams(deck);
+  const std::vector<std::vector<std::size_t>> onSolids = shellsOnSolids(deck, plans);
+  HeldShells held(deck);
   std::vector<std::uint8_t> keptFromStart(plans.size(), 0);
   for (std::size_t i = 0; i < plans.size(); ++i) {
-    if (onSolids[i] == 0) {
-      todo.push_back(i);
+    if (onSolids[i].empty()) continue;
+    if (onSolids[i].size() < plans[i].shells) {
+      held.hold(plans[i], onSolids[i]);
       continue;
     }
     keptFromStart[i] = 1;
     RemeshedPart& part = report.parts[i];
     part.plan = plans[i];
-    part.reason = std::to_string(onSolids[i]) + " of its " + std::to_string(plans[i].shells) +
+    part.reason = "its " + std::to_string(plans[i].shells) +
                   " shells lie on faces of solid elements (remeshing would detach them)";
-    fixed.push_back(plans[i].part);
     tell("extract", plans[i].part, true);
+  }
+  std::vector<double> junctionSpacing;
+  const std::vector<FeModel> models = partModels(deck, plans, junctionSpacing);
+  // Parts whose seams keep their nodes: from the start those not planned (held shells too) and
+  // those on solids, then every part kept in a round.
+  std::vector<Id> fixed = unplannedParts(deck, plans);
+  std::vector<std::size_t> todo;
+  for (std::size_t i = 0; i < plans.size(); ++i) {
+    if (keptFromStart[i])
+      fixed.push_back(plans[i].part);
+    else
+      todo.push_back(i);
   }
   std::sort(fixed.begin(), fixed.end());
   // Rounds: the parts to do are remeshed with the seams along fixed parts keeping their nodes (a
@@ -272,8 +319,15 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
   std::unordered_set<Id> allHardPoints;
   for (const std::unordered_set<Id>& part : hardPoints)
     allHardPoints.insert(part.begin(), part.end());
-  report.seamsBefore = deckSeams(deck);
   report.assembly = replacePartMeshes(deck, accepted, allHardPoints);
+  held.restore();
+  for (std::size_t i = 0; i < plans.size(); ++i) {
+    if (keptFromStart[i] || onSolids[i].empty()) continue;
+    std::string& reason = report.parts[i].reason;
+    reason = std::to_string(onSolids[i].size()) + " of its " + std::to_string(plans[i].shells) +
+             " shells lie on faces of solid elements and are kept" +
+             (reason.empty() ? "" : "; " + reason);
+  }
   report.seamsAfter = deckSeams(deck);
   report.assemblySeconds = since(assemblyStart);
   report.totalSeconds = since(start);
