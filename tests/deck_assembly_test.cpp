@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -105,21 +107,23 @@ TEST(DeckAssembly, LsDynaSeamIdsAndRemaps) {
   EXPECT_EQ((std::array<Id, 4>{7, 8, 10, 9}), model.shells[1].nodes);
   EXPECT_EQ((std::array<Id, 4>{8, 2, 5, 10}), model.shells[2].nodes);
 
-  // Node 1 is in a *SET_NODE_LIST (remapped to 7 at 0.05) and in a generated range (unmapped,
-  // so it is kept); node 4 is in the list (remapped to 9 at 0) and in an unknown keyword.
-  ASSERT_EQ(report.remaps.size(), 3u);
-  EXPECT_EQ(report.remaps[0].keyword, "*SET_NODE_LIST");
+  // The history node 1 is a point: the nearest new node 7 (at 0.05) takes it. The list of
+  // nodes 1, 4 and 2 is a region, the two sides of part 1 from node 1 to 2 and to 4: the new
+  // nodes on them join it (7 and 8 on the bottom, 9 at node 4), each from its nearest member.
+  ASSERT_EQ(report.remaps.size(), 4u);
+  EXPECT_EQ(report.remaps[0].keyword, "*DATABASE_HISTORY_NODE");
   EXPECT_EQ(report.remaps[0].oldNode, 1);
   EXPECT_EQ(report.remaps[0].newNode, 7);
   EXPECT_NEAR(report.remaps[0].distance, 0.05, 1e-15);
-  EXPECT_EQ(report.remaps[0].line, 15u);
-  EXPECT_FALSE(report.remaps[0].blockLine);
-  EXPECT_EQ(report.remaps[1].oldNode, 4);
-  EXPECT_EQ(report.remaps[1].newNode, 9);
-  EXPECT_EQ(report.remaps[1].distance, 0.0);
-  EXPECT_EQ(report.remaps[2].keyword, "*DATABASE_HISTORY_NODE");
-  EXPECT_EQ(report.remaps[2].oldNode, 1);
-  EXPECT_EQ(report.remaps[2].newNode, 7);
+  const std::array<std::pair<Id, Id>, 3> setRemaps{{{1, 7}, {1, 8}, {4, 9}}};
+  for (std::size_t k = 0; k < setRemaps.size(); ++k) {
+    const NodeRemap& remap = report.remaps[k + 1];
+    EXPECT_EQ(remap.keyword, "*SET_NODE_LIST");
+    EXPECT_EQ(std::make_pair(remap.oldNode, remap.newNode), setRemaps[k]);
+    EXPECT_EQ(remap.line, 15u);
+    EXPECT_FALSE(remap.blockLine);
+  }
+  EXPECT_EQ(report.remaps[3].distance, 0.0);
   ASSERT_EQ(report.unmapped.size(), 2u);
   EXPECT_EQ(report.unmapped[0].keyword, "*SET_NODE_LIST_GENERATE");
   EXPECT_EQ(report.unmapped[0].node, 1);
@@ -136,7 +140,8 @@ TEST(DeckAssembly, LsDynaSeamIdsAndRemaps) {
             "*SET_NODE_LIST\n"
             "$#     sid       da1\n"
             "         7       0.0       0.0       0.0       0.0\n"
-            "         7         9         2\n");
+            "         7         8         2\n"
+            "         9\n");
   EXPECT_EQ(block(model, "*DATABASE_HISTORY_NODE").text, "*DATABASE_HISTORY_NODE\n7,5\n");
   for (const char* keyword :
        {"*SET_NODE_LIST_GENERATE", "*CONSTRAINED_WIDGET_NODE", "*ELEMENT_MASS", "*END"})
@@ -147,7 +152,91 @@ TEST(DeckAssembly, LsDynaSeamIdsAndRemaps) {
   const FeModel back = readDeck(dir / "out.k");
   EXPECT_EQ(back.shells.size(), 3u);
   EXPECT_EQ(back.nodes.size(), model.nodes.size());
-  EXPECT_NE(readText(dir / "out.k").find("         7         9         2\n"), std::string::npos);
+  EXPECT_NE(readText(dir / "out.k").find("         7         8         2\n         9\n"),
+            std::string::npos);
+}
+
+TEST(DeckAssembly, NodeSetsAndInitialVelocitiesCoverTheSameRegionOfTheNewMesh) {
+  // A 2 x 2 plate of unit quads (node (i, j): ID 1 + i + 3 j, velocity 10 x its ID) remeshed as
+  // 3 x 3 quads of side 2/3. The set of the side x = 0 must become the new nodes on that side;
+  // every new node must get one velocity line, with the data of its nearest old node.
+  std::string deck = "*KEYWORD\n*NODE\n";
+  char line[96];
+  for (int n = 0; n < 9; ++n) {
+    std::snprintf(line, sizeof line, "%8d%16.3f%16.3f%16.3f\n", n + 1, double(n % 3), double(n / 3),
+                  0.0);
+    deck += line;
+  }
+  deck += "*ELEMENT_SHELL\n";
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const int a = 1 + i + 3 * j;
+      std::snprintf(line, sizeof line, "%8d%8d%8d%8d%8d%8d\n", 1 + i + 2 * j, 1, a, a + 1, a + 4,
+                    a + 3);
+      deck += line;
+    }
+  deck += "*SET_NODE_LIST\n         3\n         1         4         7\n*INITIAL_VELOCITY_NODE\n";
+  for (int n = 1; n <= 9; ++n) {
+    std::snprintf(line, sizeof line, "%10d%10.1f%10.1f\n", n, 10.0 * n, -1.0);
+    deck += line;
+  }
+  deck += "*END\n";
+  const auto dir = scratchDir("assembly_regions");
+  writeText(dir / "in.k", deck);
+  FeModel model = readDeck(dir / "in.k");
+  QuadMesh mesh;
+  mesh.part = 1;
+  for (int j = 0; j <= 3; ++j)
+    for (int i = 0; i <= 3; ++i) mesh.points.push_back({2.0 * i / 3, 2.0 * j / 3, 0.0});
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const CornerIndex a = CornerIndex(i + 4 * j);
+      mesh.faces.push_back({a, a + 1, a + 5, a + 4});
+    }
+  const AssemblyReport report = replacePartMeshes(model, {mesh});
+  EXPECT_EQ(report.removedNodes, 9u);
+  EXPECT_TRUE(report.unmapped.empty());
+  writeDeck(model, dir / "out.k");
+  const FeModel back = readDeck(dir / "out.k");
+  const auto nodes = nodesById(back);
+  ASSERT_EQ(nodes.size(), 16u);
+  const auto dataLines = [&](const std::string& keyword) {
+    std::vector<std::string> lines;
+    const std::string& text = block(back, keyword).text;
+    std::size_t at = text.find('\n') + 1;
+    while (at < text.size()) {
+      const std::size_t end = text.find('\n', at);
+      lines.push_back(text.substr(at, end - at));
+      at = end + 1;
+    }
+    return lines;
+  };
+  std::set<Id> members;
+  const std::vector<std::string> setLines = dataLines("*SET_NODE_LIST");
+  for (std::size_t k = 1; k < setLines.size(); ++k) {  // after the set's ID
+    const std::string& row = setLines[k];
+    for (std::size_t c = 0; c < row.size(); c += 10) {
+      const std::string field = row.substr(c, 10);
+      if (field.find_first_not_of(' ') != std::string::npos) members.insert(std::stoll(field));
+    }
+  }
+  std::set<Id> onTheSide;
+  for (const auto& [id, xyz] : nodes)
+    if (xyz[0] == 0.0) onTheSide.insert(id);
+  EXPECT_EQ(onTheSide.size(), 4u);
+  EXPECT_EQ(members, onTheSide);
+  std::map<Id, double> velocity;
+  for (const std::string& row : dataLines("*INITIAL_VELOCITY_NODE")) {
+    const Id id = std::stoll(row.substr(0, 10));
+    EXPECT_TRUE(velocity.emplace(id, std::stod(row.substr(10, 10))).second) << "twice: " << id;
+    EXPECT_EQ(row.substr(20), "      -1.0");
+  }
+  ASSERT_EQ(velocity.size(), 16u);
+  for (const auto& [id, xyz] : nodes) {
+    ASSERT_TRUE(velocity.count(id)) << id;
+    const long nearestOld = 1 + std::lround(xyz[0]) + 3 * std::lround(xyz[1]);
+    EXPECT_EQ(velocity.at(id), 10.0 * double(nearestOld)) << id;
+  }
 }
 
 TEST(DeckAssembly, UnreferencedOldNodesAreRemoved) {

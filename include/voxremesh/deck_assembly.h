@@ -43,6 +43,16 @@
 //     Abaqus   *NSET, *BOUNDARY, *CLOAD, *ELEMENT (non-shell types)
 //   A rewritten field keeps its columns (fixed format: right-aligned in the field's width;
 //   free format: the token replaced); every other byte of the deck stays as it was.
+// - Regions: the node lists *SET_NODE and *SET_NODE_LIST (_TITLE) and the per-node data lines of
+//   *INITIAL_VELOCITY_NODE name a region, not points. A new node joins a keyword's region when
+//   the old shell it lies on (its closest point on the part's old shells) has all corners in the
+//   region, or it lies on an edge of that shell whose two ends are in it (a set along a side),
+//   or on a corner in it; an old member on no such shell or edge (an isolated node) gives the
+//   nearest new node. A list gets the new IDs in the fields of its removed members (left blank
+//   when fewer new nodes join) and in lines of the same layout after its last reference; a data
+//   line is repeated for every new node whose nearest joining member is its node, and dropped
+//   when that node is removed. Each new member is a NodeRemap from that member. Nastran and
+//   Abaqus lists (SET1, SPC1, *NSET) are still rewritten point by point.
 // - Unmapped references: a reference that cannot be rewritten (a range such as *SET_NODE_LIST_
 //   GENERATE, SPC1 THRU or *NSET GENERATE covering an old node; a new ID wider than its fixed
 //   field; a tab-expanded Nastran field), and any integer equal to an old node ID in keywords

@@ -15,7 +15,7 @@ using lsdyna::CardFormat;
 
 /// A keyword read field by field: cards to skip at the start of the block, then data cards with
 /// the given standard-format widths whose fields in nodeMask hold node IDs (or, for ranges,
-/// pairs of first and last IDs).
+/// pairs of first and last IDs), and what those references mean (NodeRole).
 struct KeywordSpec {
   std::string_view name;
   std::uint8_t leadingCards;
@@ -23,16 +23,17 @@ struct KeywordSpec {
   std::array<std::uint8_t, lsdyna::kMaxFields> widths;
   std::uint16_t nodeMask;
   bool ranges = false;
+  NodeRole role = NodeRole::Point;
 };
 
 constexpr std::array<std::uint8_t, lsdyna::kMaxFields> k10x8{10, 10, 10, 10, 10, 10, 10, 10};
 constexpr std::array<std::uint8_t, lsdyna::kMaxFields> k8x10{8, 8, 8, 8, 8, 8, 8, 8, 8, 8};
 
 constexpr KeywordSpec kKeywords[] = {
-    {"*SET_NODE", 1, 8, k10x8, 0xFF},
-    {"*SET_NODE_LIST", 1, 8, k10x8, 0xFF},
-    {"*SET_NODE_TITLE", 2, 8, k10x8, 0xFF},
-    {"*SET_NODE_LIST_TITLE", 2, 8, k10x8, 0xFF},
+    {"*SET_NODE", 1, 8, k10x8, 0xFF, false, NodeRole::Member},
+    {"*SET_NODE_LIST", 1, 8, k10x8, 0xFF, false, NodeRole::Member},
+    {"*SET_NODE_TITLE", 2, 8, k10x8, 0xFF, false, NodeRole::Member},
+    {"*SET_NODE_LIST_TITLE", 2, 8, k10x8, 0xFF, false, NodeRole::Member},
     {"*SET_NODE_LIST_GENERATE", 1, 8, k10x8, 0xFF, true},
     {"*SET_NODE_LIST_GENERATE_TITLE", 2, 8, k10x8, 0xFF, true},
     {"*DATABASE_HISTORY_NODE", 0, 8, k10x8, 0xFF},
@@ -42,7 +43,7 @@ constexpr KeywordSpec kKeywords[] = {
     {"*CONSTRAINED_EXTRA_NODES_NODE", 0, 2, k10x8, 0x2},
     {"*BOUNDARY_SPC_NODE", 0, 8, k10x8, 0x1},
     {"*BOUNDARY_PRESCRIBED_MOTION_NODE", 0, 8, k10x8, 0x1},
-    {"*INITIAL_VELOCITY_NODE", 0, 7, k10x8, 0x1},
+    {"*INITIAL_VELOCITY_NODE", 0, 7, k10x8, 0x1, false, NodeRole::Record},
     {"*LOAD_NODE_POINT", 0, 8, k10x8, 0xE1},
     {"*ELEMENT_MASS", 0, 4, {8, 8, 16, 8}, 0x2},
     {"*ELEMENT_BEAM", 0, 10, k8x10, 0x1C},
@@ -202,6 +203,8 @@ void scanLsDynaBlock(std::string_view text, CardFormat deckFormat, const Referen
       const FieldSpan& span = spans[i];
       sink.add(cursor.begin() + span.begin, span.end - span.begin, span.width, cursor.lineNumber(),
                values[i], ReferenceKind::Field, keyword.name);
+      sink.references.back().role = spec->role;
+      sink.references.back().perLine = layout.count;
     }
   }
 }

@@ -19,6 +19,14 @@ enum class ReferenceKind {
   Suspect,  ///< an equal integer in a keyword not understood field by field: reported only
 };
 
+/// What a reference means, which says what takes the place of a removed node.
+enum class NodeRole {
+  Point,   ///< a point (a weld, a load, a history node): the nearest new node takes it
+  Member,  ///< a member of a node list (a set): the new nodes of the list's region join it
+  Record,  ///< the key of a per-node data line (an initial velocity): the line is repeated for
+           ///< the new nodes of the region, each taking the data of the nearest old member
+};
+
 /// One reference to a node of the watched set in a verbatim block.
 struct NodeReference {
   std::size_t block = 0;   ///< index into FeModel::blocks
@@ -30,6 +38,14 @@ struct NodeReference {
   ReferenceKind kind = ReferenceKind::Field;
   std::string keyword;  ///< as the deck names it ("*SET_NODE_LIST", "SPC1", "*NSET")
   std::string reason;   ///< for Range and Suspect (and Field spans that cannot be rewritten)
+  NodeRole role = NodeRole::Point;
+  std::size_t perLine = 0;  ///< Member: IDs per data line of the list
+};
+
+/// A replacement in a block's text: `length` characters at `offset` become `text`.
+struct TextEdit {
+  std::size_t offset = 0, length = 0;
+  std::string text;
 };
 
 /// Finds the references to nodes of `watched` in the verbatim blocks of `model` (its

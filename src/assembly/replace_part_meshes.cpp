@@ -12,6 +12,7 @@
 
 #include "assembly/nearest_point.h"
 #include "assembly/node_references.h"
+#include "assembly/node_regions.h"
 #include "voxremesh/deck_assembly.h"
 
 namespace voxremesh {
@@ -103,7 +104,9 @@ AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& ne
     if (!meshOfPart.count(shell.part))
       for (int c = 0; c < shell.nodeCount; ++c)
         keptShellNodes.insert(shell.nodes[static_cast<std::size_t>(c)]);
-  std::unordered_set<Id> oldNodes;
+  std::unordered_set<Id> oldNodes;   // the nodes of the remeshed parts' shells that go
+  std::unordered_set<Id> partNodes;  // all nodes of those shells
+  std::vector<Shell> oldShells;      // those shells
   std::unordered_map<Id, std::vector<std::size_t>> meshesOfOldNode;
   std::vector<PartTemplate> templates(newParts.size());
   std::vector<std::map<std::uint8_t, std::size_t>> typeCounts(newParts.size());
@@ -117,8 +120,10 @@ AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& ne
     ++report.parts[m].shellsBefore;
     ++typeCounts[m][shell.type];
     anyExtras[m] = anyExtras[m] || shell.extras >= 0;
+    oldShells.push_back(shell);
     for (int c = 0; c < shell.nodeCount; ++c) {
       const Id node = shell.nodes[static_cast<std::size_t>(c)];
+      partNodes.insert(node);
       if (keptShellNodes.count(node)) continue;
       oldNodes.insert(node);
       std::vector<std::size_t>& meshes = meshesOfOldNode[node];
@@ -204,18 +209,23 @@ AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& ne
   for (const Id node : hardKept) oldNodes.erase(node);
   if (!addedNodes.empty()) report.firstNewNodeId = maxNode + 1;
 
-  // Node references of the verbatim keywords: rewrite, or report and keep the node.
-  std::vector<assembly::NodeReference> references = assembly::findNodeReferences(model, oldNodes);
+  // Node references of the verbatim keywords: points are rewritten to the nearest new node (or
+  // reported, their node kept); lists and per-node data of regions cover the region's new nodes.
+  const std::vector<assembly::NodeReference> references =
+      assembly::findNodeReferences(model, partNodes);
+  std::map<std::pair<std::size_t, int>, std::vector<const assembly::NodeReference*>> regions;
   std::vector<assembly::NearestPoint> searches;
   searches.reserve(newParts.size());
   for (const QuadMesh& mesh : newParts) searches.emplace_back(mesh.points);
   std::unordered_set<Id> keptOld;
-  struct Edit {
-    std::size_t offset, length;
-    std::string text;
-  };
-  std::vector<std::vector<Edit>> edits(model.blocks.size());
+  std::vector<std::vector<assembly::TextEdit>> edits(model.blocks.size());
   for (const assembly::NodeReference& reference : references) {
+    if (reference.role != assembly::NodeRole::Point &&
+        reference.kind == assembly::ReferenceKind::Field) {
+      regions[{reference.block, static_cast<int>(reference.role)}].push_back(&reference);
+      continue;
+    }
+    if (!oldNodes.count(reference.node)) continue;  // a node that stays
     const DeckBlock& block = model.blocks[reference.block];
     const bool located = block.line > 0;
     const std::size_t line = located ? block.line + reference.line - 1 : reference.line;
@@ -253,15 +263,42 @@ AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& ne
                std::to_string(reference.width) + " columns");
       continue;
     }
-    edits[reference.block].push_back(Edit{reference.offset, reference.length, std::move(text)});
+    edits[reference.block].push_back(
+        assembly::TextEdit{reference.offset, reference.length, std::move(text)});
     report.remaps.push_back(NodeRemap{reference.keyword, block.file, line, !located, reference.node,
                                       bestId, bestPart, bestDistance});
   }
+  if (!regions.empty()) {
+    const std::vector<assembly::NewNodeSite> sites =
+        assembly::locateNewNodes(model, newParts, pointIds, maxNode + 1);
+    for (const auto& [key, group] : regions) {
+      std::unordered_set<Id> members;
+      std::unordered_map<Id, const assembly::NodeReference*> referenceOf;
+      for (const assembly::NodeReference* reference : group) {
+        members.insert(reference->node);
+        referenceOf.emplace(reference->node, reference);
+      }
+      const std::vector<assembly::RegionMember> added =
+          assembly::regionMembers(sites, members, model, oldShells, oldNodes);
+      DeckBlock& block = model.blocks[key.first];
+      for (assembly::TextEdit& edit : assembly::regionEdits(block.text, group, added, oldNodes))
+        edits[key.first].push_back(std::move(edit));
+      const bool located = block.line > 0;
+      for (const assembly::RegionMember& member : added) {
+        const assembly::NodeReference& source = *referenceOf.at(member.source);
+        report.remaps.push_back(NodeRemap{
+            source.keyword, block.file, located ? block.line + source.line - 1 : source.line,
+            !located, member.source, member.node, member.part, member.distance});
+      }
+    }
+  }
   // Apply the edits of each block from its end, so that earlier offsets stay valid.
   for (std::size_t b = 0; b < edits.size(); ++b) {
-    std::sort(edits[b].begin(), edits[b].end(),
-              [](const Edit& x, const Edit& y) { return x.offset > y.offset; });
-    for (const Edit& edit : edits[b])
+    std::stable_sort(edits[b].begin(), edits[b].end(),
+                     [](const assembly::TextEdit& x, const assembly::TextEdit& y) {
+                       return x.offset > y.offset;
+                     });
+    for (const assembly::TextEdit& edit : edits[b])
       model.blocks[b].text.replace(edit.offset, edit.length, edit.text);
   }
 

@@ -1,0 +1,248 @@
+// Regions named by node lists and per-node data, carried over to the new meshes (node_regions.h).
+#include "assembly/node_regions.h"
+
+#include <algorithm>
+#include <limits>
+#include <map>
+#include <string>
+#include <unordered_map>
+
+#include "assembly/nearest_point.h"
+#include "geometry/vec3.h"
+#include "io/text_scan.h"
+#include "voxremesh/reference_surface.h"
+
+namespace voxremesh::assembly {
+
+using namespace geom;  // NOLINT: the vector operators
+
+std::vector<NewNodeSite> locateNewNodes(const FeModel& model, const std::vector<QuadMesh>& meshes,
+                                        const std::vector<std::vector<Id>>& pointIds, Id firstNew) {
+  std::vector<NewNodeSite> sites;
+  std::unordered_set<Id> located;
+  const std::unordered_map<Id, std::size_t> nodeIndex = model.nodeIndex();
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    std::vector<Vec3> queries;
+    std::vector<Id> ids;
+    for (std::size_t p = 0; p < meshes[m].points.size(); ++p) {
+      const Id id = pointIds[m][p];
+      if (id < firstNew || !located.insert(id).second) continue;
+      queries.push_back(meshes[m].points[p]);
+      ids.push_back(id);
+    }
+    if (queries.empty()) continue;
+    const Id part = meshes[m].part;
+    std::vector<const Shell*> shells;
+    for (const Shell& shell : model.shells)
+      if (shell.part == part) shells.push_back(&shell);
+    const ReferenceSurface surface(quadMeshFromModel(model, part));
+    if (surface.empty()) continue;
+    const std::vector<SurfaceHit> hits = surface.closestPoints(queries);
+    for (std::size_t q = 0; q < queries.size(); ++q) {
+      NewNodeSite site;
+      site.node = ids[q];
+      site.part = part;
+      site.xyz = queries[q];
+      site.onOld = hits[q].point;
+      const Shell& shell = *shells[hits[q].face];
+      site.cornerCount = shell.nodeCount;
+      for (int c = 0; c < shell.nodeCount; ++c) {
+        site.corners[std::size_t(c)] = shell.nodes[std::size_t(c)];
+        site.cornerXyz[std::size_t(c)] = model.nodes[nodeIndex.at(shell.nodes[std::size_t(c)])].xyz;
+      }
+      sites.push_back(site);
+    }
+  }
+  return sites;
+}
+
+namespace {
+
+/// The distance from p to the segment a-b.
+double segmentDistance(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double length2 = geom::dot(ab, ab);
+  const double t = length2 > 0 ? std::clamp(geom::dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
+  return geom::distance(p, a + ab * t);
+}
+
+/// Where a site joins the region: the source member, or 0 when it does not join.
+Id siteSource(const NewNodeSite& site, const std::unordered_set<Id>& members) {
+  const int n = site.cornerCount;
+  double longest = 0;
+  for (int c = 0; c < n; ++c)
+    longest = std::max(longest, geom::distance(site.cornerXyz[std::size_t(c)],
+                                               site.cornerXyz[std::size_t((c + 1) % n)]));
+  const double tolerance = 1e-6 * longest;
+  // The nearest corner among those allowed.
+  const auto nearest = [&](auto allowed) {
+    Id best = 0;
+    double bestDistance = std::numeric_limits<double>::infinity();
+    for (int c = 0; c < n; ++c) {
+      if (!allowed(c)) continue;
+      const double d = geom::distance(site.onOld, site.cornerXyz[std::size_t(c)]);
+      const Id id = site.corners[std::size_t(c)];
+      if (d < bestDistance || (d == bestDistance && id < best)) {
+        bestDistance = d;
+        best = id;
+      }
+    }
+    return best;
+  };
+  const auto member = [&](int c) { return members.count(site.corners[std::size_t(c)]) > 0; };
+  bool all = true;
+  for (int c = 0; c < n; ++c) all = all && member(c);
+  if (all) return nearest([](int) { return true; });
+  for (int c = 0; c < n; ++c) {
+    const int d = (c + 1) % n;
+    if (member(c) && member(d) &&
+        segmentDistance(site.onOld, site.cornerXyz[std::size_t(c)],
+                        site.cornerXyz[std::size_t(d)]) <= tolerance)
+      return nearest([&](int k) { return k == c || k == d; });
+  }
+  return nearest([&](int c) {
+    return member(c) && geom::distance(site.onOld, site.cornerXyz[std::size_t(c)]) <= tolerance;
+  });
+}
+
+/// The removed members on no old shell whose corners are all members and on no edge whose ends
+/// are (ascending).
+std::vector<Id> isolatedMembers(const std::vector<Shell>& oldShells,
+                                const std::unordered_set<Id>& members,
+                                const std::unordered_set<Id>& removed) {
+  std::unordered_set<Id> covered;
+  for (const Shell& shell : oldShells) {
+    const int n = shell.nodeCount;
+    for (int c = 0; c < n; ++c) {
+      const Id a = shell.nodes[std::size_t(c)], b = shell.nodes[std::size_t((c + 1) % n)];
+      if (members.count(a) && members.count(b)) {
+        covered.insert(a);
+        covered.insert(b);
+      }
+    }
+  }
+  std::vector<Id> isolated;
+  for (const Id node : members)
+    if (removed.count(node) && !covered.count(node)) isolated.push_back(node);
+  std::sort(isolated.begin(), isolated.end());
+  return isolated;
+}
+
+}  // namespace
+
+std::vector<RegionMember> regionMembers(const std::vector<NewNodeSite>& sites,
+                                        const std::unordered_set<Id>& members, const FeModel& model,
+                                        const std::vector<Shell>& oldShells,
+                                        const std::unordered_set<Id>& removed) {
+  std::map<Id, RegionMember> joined;
+  const std::unordered_map<Id, std::size_t> nodeIndex = model.nodeIndex();
+  for (const NewNodeSite& site : sites) {
+    const Id source = siteSource(site, members);
+    if (source == 0) continue;
+    joined[site.node] =
+        RegionMember{site.node, source,
+                     geom::distance(site.xyz, model.nodes[nodeIndex.at(source)].xyz), site.part};
+  }
+  const std::vector<Id> isolated = isolatedMembers(oldShells, members, removed);
+  if (!isolated.empty() && !sites.empty()) {
+    std::vector<Vec3> points;
+    points.reserve(sites.size());
+    for (const NewNodeSite& site : sites) points.push_back(site.xyz);
+    const NearestPoint search(points);
+    for (const Id node : isolated) {
+      double distance = 0;
+      const NewNodeSite& site =
+          sites[search.nearest(model.nodes[nodeIndex.at(node)].xyz, &distance)];
+      joined.emplace(site.node, RegionMember{site.node, node, distance, site.part});
+    }
+  }
+  std::vector<RegionMember> result;
+  result.reserve(joined.size());
+  for (const auto& entry : joined) result.push_back(entry.second);
+  return result;
+}
+
+namespace {
+
+/// The text of a node ID in a reference's field: right-aligned in its width, or the number.
+std::string fieldText(const NodeReference& reference, Id id) {
+  std::string text;
+  if (!referenceText(reference, id, text)) text = std::to_string(id);
+  return text;
+}
+
+/// The span [begin, end) of the line around `offset` in text, its line break included.
+std::pair<std::size_t, std::size_t> lineAround(std::string_view text, std::size_t offset) {
+  const std::size_t before = offset == 0 ? std::string_view::npos : text.rfind('\n', offset - 1);
+  const std::size_t begin = before == std::string_view::npos ? 0 : before + 1;
+  const std::size_t after = text.find('\n', offset);
+  return {begin, after == std::string_view::npos ? text.size() : after + 1};
+}
+
+/// A list's extra data lines: the IDs `perLine` to a line, in the reference's field width (or
+/// separated by commas in free format), each line ending as `lineEnd`.
+std::string listLines(const NodeReference& like, const std::vector<Id>& ids,
+                      std::string_view lineEnd) {
+  std::string out;
+  const std::size_t perLine = std::max<std::size_t>(like.perLine, 1);
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    if (like.width == 0 && i % perLine != 0) out += ',';
+    out += fieldText(like, ids[i]);
+    if (i % perLine == perLine - 1 || i + 1 == ids.size()) out += lineEnd;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<TextEdit> regionEdits(std::string_view text,
+                                  const std::vector<const NodeReference*>& references,
+                                  const std::vector<RegionMember>& added,
+                                  const std::unordered_set<Id>& removed) {
+  std::vector<TextEdit> edits;
+  if (references.empty()) return edits;
+  if (references.front()->role == NodeRole::Record) {
+    std::unordered_map<Id, std::vector<Id>> newOf;  // source -> its new nodes, ascending
+    for (const RegionMember& member : added) newOf[member.source].push_back(member.node);
+    std::unordered_set<Id> written;
+    for (const NodeReference* reference : references) {
+      const auto [begin, end] = lineAround(text, reference->offset);
+      const std::string_view line = text.substr(begin, end - begin);
+      const std::size_t at = reference->offset - begin;
+      std::string out;
+      if (!removed.count(reference->node)) out += line;
+      const auto found = newOf.find(reference->node);
+      if (found != newOf.end() && written.insert(reference->node).second)
+        for (const Id node : found->second) {
+          std::string copy(line);
+          copy.replace(at, reference->length, fieldText(*reference, node));
+          out += copy;
+        }
+      edits.push_back(TextEdit{begin, end - begin, std::move(out)});
+    }
+    return edits;
+  }
+  // A list: new IDs first into the fields of removed members, the rest in lines after the last.
+  std::size_t next = 0;
+  for (const NodeReference* reference : references) {
+    if (!removed.count(reference->node)) continue;
+    std::string field = next < added.size() ? fieldText(*reference, added[next++].node)
+                                            : std::string(reference->width, ' ');
+    edits.push_back(TextEdit{reference->offset, reference->length, std::move(field)});
+  }
+  if (next < added.size()) {
+    const NodeReference& last = *references.back();
+    const auto [begin, end] = lineAround(text, last.offset);
+    std::string_view lineEnd = "\n";
+    if (end >= begin + 2 && text.substr(end - 2, 2) == "\r\n") lineEnd = "\r\n";
+    std::vector<Id> rest;
+    for (std::size_t i = next; i < added.size(); ++i) rest.push_back(added[i].node);
+    std::string lines = listLines(last, rest, lineEnd);
+    if (end == text.size() && (end == begin || text[end - 1] != '\n'))
+      lines.insert(0, std::string(lineEnd));
+    edits.push_back(TextEdit{end, 0, std::move(lines)});
+  }
+  return edits;
+}
+
+}  // namespace voxremesh::assembly
