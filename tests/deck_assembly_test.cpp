@@ -329,15 +329,14 @@ TEST(DeckAssembly, NastranFieldsAreRewrittenInTheirColumns) {
   EXPECT_EQ(report.firstNewNodeId, 5);
   EXPECT_EQ(report.firstNewElementId, 6001);  // above the CONM2 EID 6000
   ASSERT_EQ(report.remaps.size(), 5u);
-  EXPECT_EQ(report.remaps[0].keyword, "SPC1");
-  EXPECT_TRUE(report.remaps[0].blockLine);
   ASSERT_EQ(report.unmapped.size(), 4u);  // SPC1 THRU covers 1..4
   EXPECT_EQ(report.unmapped[0].keyword, "SPC1");
-  // Every report names the card and its line. The Nastran reader does not record where a
-  // verbatim block stood in the file (DeckBlock::line 0), so the line is the one within the
-  // block (blockLine): the block starts at the SPC1 of file line 7.
+  // Every report names the card and its line: the points first, then the SPC1 list of the side
+  // from node 1 to 4 (a region: the new nodes 5 and 8 on that side). The Nastran reader does not
+  // record where a verbatim block stood in the file (DeckBlock::line 0), so the line is the one
+  // within the block (blockLine): the block starts at the SPC1 of file line 7.
   const std::vector<std::pair<std::string, std::size_t>> where = {
-      {"SPC1", 1}, {"SPC1", 1}, {"RBE2", 2}, {"RBE2", 2}, {"CONM2", 3}};
+      {"RBE2", 2}, {"RBE2", 2}, {"CONM2", 3}, {"SPC1", 1}, {"SPC1", 1}};
   for (std::size_t i = 0; i < where.size(); ++i) {
     EXPECT_EQ(report.remaps[i].keyword, where[i].first) << i;
     EXPECT_EQ(report.remaps[i].line, where[i].second) << i;
@@ -356,6 +355,86 @@ TEST(DeckAssembly, NastranFieldsAreRewrittenInTheirColumns) {
   EXPECT_NE(out.find("SPC1         200     123       1    THRU       4\n"), std::string::npos);
   const FeModel back = readDeck(dir / "out.bdf");
   EXPECT_EQ(back.shells.size(), 1u);
+}
+
+TEST(DeckAssembly, NastranSetAndSpcListsCoverTheSameRegionOfTheNewMesh) {
+  // A 2 x 2 plate of unit quads remeshed as 3 x 3 quads of side 2/3: the SET1 of all 9 grids (on
+  // a continuation line) must list the 16 new grids, the free-format SPC1 of the side x = 0 the
+  // 4 new grids on that side.
+  std::string deck = "BEGIN BULK\n";
+  char line[96];
+  for (int n = 0; n < 9; ++n) {
+    std::snprintf(line, sizeof line, "GRID    %8d        %8.1f%8.1f%8.1f\n", n + 1, double(n % 3),
+                  double(n / 3), 0.0);
+    deck += line;
+  }
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const int a = 1 + i + 3 * j;
+      std::snprintf(line, sizeof line, "CQUAD4  %8d       1%8d%8d%8d%8d\n", 1 + i + 2 * j, a, a + 1,
+                    a + 4, a + 3);
+      deck += line;
+    }
+  deck +=
+      "SET1          77       1       2       3       4       5       6       7\n"
+      "               8       9\n"
+      "SPC1,88,123,1,4,7\n"
+      "PSHELL         1       1     1.0\nMAT1           1  2.1+5            .3\nENDDATA\n";
+  const auto dir = scratchDir("assembly_nastran_regions");
+  writeText(dir / "in.bdf", deck);
+  FeModel model = readDeck(dir / "in.bdf");
+  QuadMesh mesh;
+  mesh.part = 1;
+  for (int j = 0; j <= 3; ++j)
+    for (int i = 0; i <= 3; ++i) mesh.points.push_back({2.0 * i / 3, 2.0 * j / 3, 0.0});
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const CornerIndex a = CornerIndex(i + 4 * j);
+      mesh.faces.push_back({a, a + 1, a + 5, a + 4});
+    }
+  const AssemblyReport report = replacePartMeshes(model, {mesh});
+  EXPECT_EQ(report.removedNodes, 9u);
+  EXPECT_TRUE(report.unmapped.empty());
+  writeDeck(model, dir / "out.bdf");
+  const std::string out = readText(dir / "out.bdf");
+  const auto nodes = nodesById(readDeck(dir / "out.bdf"));
+  ASSERT_EQ(nodes.size(), 16u);
+  // The IDs of a card: its lines up to the next card, small fields 2..9 or commas after field 3.
+  const auto listed = [&](const std::string& start, bool commas) {
+    std::multiset<Id> ids;
+    std::size_t at = out.find(start);
+    if (at == std::string::npos) return ids;
+    for (bool first = true; at < out.size(); first = false) {
+      const std::size_t end = out.find('\n', at);
+      const std::string row = out.substr(at, end - at);
+      if (!first && row[0] != ' ' && row[0] != '+' && row[0] != ',') break;
+      if (commas) {
+        std::size_t field = 0, begin = 0;
+        for (std::size_t c = 0; c <= row.size(); ++c)
+          if (c == row.size() || row[c] == ',') {
+            const std::string token = row.substr(begin, c - begin);
+            if (field >= (first ? 3u : 1u) && token.find_first_not_of(' ') != std::string::npos)
+              ids.insert(std::stoll(token));
+            ++field;
+            begin = c + 1;
+          }
+      } else {
+        for (std::size_t c = first ? 16 : 8; c < std::min<std::size_t>(row.size(), 72); c += 8) {
+          const std::string token = row.substr(c, 8);
+          if (token.find_first_not_of(' ') != std::string::npos) ids.insert(std::stoll(token));
+        }
+      }
+      at = end + 1;
+    }
+    return ids;
+  };
+  std::multiset<Id> all, side;
+  for (const auto& [id, xyz] : nodes) {
+    all.insert(id);
+    if (xyz[0] == 0.0) side.insert(id);
+  }
+  EXPECT_EQ(listed("SET1          77", false), all) << out;
+  EXPECT_EQ(listed("SPC1,88,123,", true), side) << out;
 }
 
 TEST(DeckAssembly, AbaqusNsetAndBoundary) {

@@ -37,22 +37,23 @@
 //              *CONSTRAINED_EXTRA_NODES_NODE, *BOUNDARY_SPC_NODE,
 //              *BOUNDARY_PRESCRIBED_MOTION_NODE, *INITIAL_VELOCITY_NODE, *LOAD_NODE_POINT,
 //              *ELEMENT_MASS, *ELEMENT_BEAM, *ELEMENT_DISCRETE, *ELEMENT_SPH
-//     Nastran  SPC, SPCD, SPC1, RBE2, RBE3, CONM2, CBUSH, CBAR, CBEAM, CROD, CONROD, CELAS1,
+//     Nastran  SPC, SPCD, SPC1, SET1, RBE2, RBE3, CONM2, CBUSH, CBAR, CBEAM, CROD, CONROD, CELAS1,
 //              CELAS2, CDAMP1, CDAMP2, CWELD (GS, GA, GB), PLOTEL, FORCE, MOMENT, CORD1R/C/S,
 //              CHEXA, CPENTA, CTETRA
 //     Abaqus   *NSET, *BOUNDARY, *CLOAD, *ELEMENT (non-shell types)
 //   A rewritten field keeps its columns (fixed format: right-aligned in the field's width;
 //   free format: the token replaced); every other byte of the deck stays as it was.
-// - Regions: the node lists *SET_NODE and *SET_NODE_LIST (_TITLE) and the per-node data lines of
-//   *INITIAL_VELOCITY_NODE name a region, not points. A new node joins a keyword's region when
+// - Regions: the node lists LS-DYNA *SET_NODE and *SET_NODE_LIST (_TITLE) and Nastran SET1 and
+//   SPC1, and the per-node data lines of *INITIAL_VELOCITY_NODE, name a region, not points. A new node joins a keyword's region when
 //   the old shell it lies on (its closest point on the part's old shells) has all corners in the
 //   region, or it lies on an edge of that shell whose two ends are in it (a set along a side),
 //   or on a corner in it; an old member on no such shell or edge (an isolated node) gives the
 //   nearest new node. A list gets the new IDs in the fields of its removed members (left blank
 //   when fewer new nodes join) and in lines of the same layout after its last reference; a data
 //   line is repeated for every new node whose nearest joining member is its node, and dropped
-//   when that node is removed. Each new member is a NodeRemap from that member. Nastran and
-//   Abaqus lists (SET1, SPC1, *NSET) are still rewritten point by point.
+//   when that node is removed. Nastran lists grow by continuation lines (8 small fields, 4 large
+//   ones, or a leading comma in free format). Each new member is a NodeRemap from that member.
+//   Abaqus *NSET lists are still rewritten point by point.
 // - Unmapped references: a reference that cannot be rewritten (a range such as *SET_NODE_LIST_
 //   GENERATE, SPC1 THRU or *NSET GENERATE covering an old node; a new ID wider than its fixed
 //   field; a tab-expanded Nastran field), and any integer equal to an old node ID in keywords
@@ -60,7 +61,7 @@
 //   *ELEMENT_, *CONSTRAINED_, *BOUNDARY_, *LOAD_, *INITIAL_, *SET_NODE, *DATABASE_HISTORY_ or
 //   containing _NODE, except those naming sets, parts or contacts: a name (without _TITLE or
 //   _ID) ending in _SET or holding _SET_, ending in _RIGID, *CONTACT_..., *CONSTRAINED_RIGID_
-//   BODIES; Nastran cards starting with C or R, MPC, SET1, ASET, OMIT, SUPORT, FORCE1/2,
+//   BODIES; Nastran cards starting with C or R, MPC, ASET, OMIT, SUPORT, FORCE1/2,
 //   MOMENT1/2, PLOAD4, TEMP; Abaqus *EQUATION, *MPC, *INITIAL CONDITIONS, *KINEMATIC COUPLING) is
 //   listed in UnmappedReference and its node is kept (detached from the new mesh), never
 //   dropped. Such a scan cannot tell a node ID from another number that happens to be equal, so

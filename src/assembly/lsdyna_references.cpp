@@ -203,8 +203,10 @@ void scanLsDynaBlock(std::string_view text, CardFormat deckFormat, const Referen
       const FieldSpan& span = spans[i];
       sink.add(cursor.begin() + span.begin, span.end - span.begin, span.width, cursor.lineNumber(),
                values[i], ReferenceKind::Field, keyword.name);
-      sink.references.back().role = spec->role;
-      sink.references.back().perLine = layout.count;
+      NodeReference& added = sink.references.back();
+      added.role = spec->role;
+      added.listLast = added.offset;
+      added.perLine = layout.count;
     }
   }
 }

@@ -20,12 +20,14 @@ struct CardSpec {
   std::string_view name;
   std::array<std::int8_t, 6> fields;  ///< -1 ends the list
   std::int8_t allFrom = -1;
+  NodeRole role = NodeRole::Point;  ///< what its grid references mean
 };
 
 constexpr CardSpec kCards[] = {
     {"SPC", {1, 4, -1}},
     {"SPCD", {1, 4, -1}},
-    {"SPC1", {-1}, 2},
+    {"SPC1", {-1}, 2, NodeRole::Member},
+    {"SET1", {-1}, 1, NodeRole::Member},
     {"RBE2", {1, -1}, 3},
     {"CONM2", {1, -1}},
     {"CBUSH", {2, 3, 4, -1}},
@@ -53,9 +55,9 @@ constexpr CardSpec kCards[] = {
 /// Cards not read field by field whose data may still name grids (their first field, the card's
 /// own ID, is not scanned).
 bool mayNameGrids(const std::string& name) {
-  static constexpr std::string_view kNames[] = {"MPC",     "SET1",    "ASET",    "ASET1",  "OMIT",
-                                                "OMIT1",   "SUPORT",  "SUPORT1", "FORCE1", "FORCE2",
-                                                "MOMENT1", "MOMENT2", "PLOAD4",  "TEMP"};
+  static constexpr std::string_view kNames[] = {"MPC",     "ASET",    "ASET1",  "OMIT",   "OMIT1",
+                                                "SUPORT",  "SUPORT1", "FORCE1", "FORCE2", "MOMENT1",
+                                                "MOMENT2", "PLOAD4",  "TEMP"};
   for (std::string_view known : kNames)
     if (name == known) return true;
   if (name.compare(0, 4, "CORD") == 0) return false;  // CORD2x: coordinates and system IDs
@@ -101,11 +103,14 @@ class CardScanner {
                            i == 0 ? 2 : 1, card.name);
       return;
     }
-    if (card.name == "SPC1" && io::iequals(fields[3], "THRU")) {
-      std::int64_t first = 0, last = 0;
-      if (integerField(fields[2], first) && integerField(fields[4], last))
-        sink_.addRange(fields.lineOf(2), first, last, 1, card.name);
-      return;
+    if (spec->allFrom >= 0) {  // a list: "G1 THRU G2" instead of its grids
+      const std::size_t from = static_cast<std::size_t>(spec->allFrom);
+      if (from + 2 < fields.size() && io::iequals(fields[from + 1], "THRU")) {
+        std::int64_t first = 0, last = 0;
+        if (integerField(fields[from], first) && integerField(fields[from + 2], last))
+          sink_.addRange(fields.lineOf(from), first, last, 1, card.name);
+        return;
+      }
     }
     std::vector<std::size_t> gridFields;
     for (const std::int8_t k : spec->fields)
@@ -117,7 +122,10 @@ class CardScanner {
     for (const std::size_t k : gridFields) {
       std::int64_t value = 0;
       if (!integerField(fields[k], value) || !sink_.watched.count(value)) continue;
+      const std::size_t before = sink_.references.size();
       addField(card, fields, k, value);
+      if (spec->role != NodeRole::Point && sink_.references.size() > before)
+        describeList(card, sink_.references.back(), spec->role);
     }
   }
 
@@ -154,6 +162,19 @@ class CardScanner {
       if (afterWeight && integerField(text, value)) out.push_back(k);
       ++k;
     }
+  }
+
+  /// Marks a reference as a member of the card's list: new grids go on continuation lines after
+  /// the card's last line, in its field width (8 to a small-field line, 4 to a large-field one,
+  /// after a comma in free format).
+  static void describeList(const Card& card, NodeReference& reference, NodeRole role) {
+    reference.role = role;
+    reference.group = card.lineBegins.front();
+    reference.listLast = card.lineBegins.back();
+    reference.perLine = reference.width == 16 ? 4 : 8;
+    reference.linePrefix = reference.width == 0    ? ","
+                           : reference.width == 16 ? "*       "
+                                                   : "        ";
   }
 
   void addField(const Card& card, const nastran::CardFields& fields, std::size_t k, Id value) {

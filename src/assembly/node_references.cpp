@@ -65,8 +65,17 @@ bool referenceText(const NodeReference& reference, Id id, std::string& text) {
 void ReferenceSink::add(std::size_t offset, std::size_t length, std::size_t width, std::size_t line,
                         Id node, ReferenceKind kind, std::string_view keyword,
                         std::string reason) const {
-  references.push_back(NodeReference{block, offset, length, width, line, node, kind,
-                                     std::string(keyword), std::move(reason)});
+  NodeReference reference;
+  reference.block = block;
+  reference.offset = offset;
+  reference.length = length;
+  reference.width = width;
+  reference.line = line;
+  reference.node = node;
+  reference.kind = kind;
+  reference.keyword = std::string(keyword);
+  reference.reason = std::move(reason);
+  references.push_back(std::move(reference));
 }
 
 void ReferenceSink::addRange(std::size_t line, Id first, Id last, Id step,

@@ -39,7 +39,11 @@ struct NodeReference {
   std::string keyword;  ///< as the deck names it ("*SET_NODE_LIST", "SPC1", "*NSET")
   std::string reason;   ///< for Range and Suspect (and Field spans that cannot be rewritten)
   NodeRole role = NodeRole::Point;
-  std::size_t perLine = 0;  ///< Member: IDs per data line of the list
+  // Member and Record references: the list or data lines they belong to.
+  std::size_t group = 0;     ///< the offset of the card or keyword in the block
+  std::size_t listLast = 0;  ///< Member: an offset within the list's last line
+  std::size_t perLine = 0;   ///< Member: IDs per added line
+  std::string linePrefix;    ///< Member: what an added line starts with (a continuation field)
 };
 
 /// A replacement in a block's text: `length` characters at `offset` become `text`.

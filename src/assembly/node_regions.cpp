@@ -179,13 +179,15 @@ std::pair<std::size_t, std::size_t> lineAround(std::string_view text, std::size_
   return {begin, after == std::string_view::npos ? text.size() : after + 1};
 }
 
-/// A list's extra data lines: the IDs `perLine` to a line, in the reference's field width (or
-/// separated by commas in free format), each line ending as `lineEnd`.
+/// A list's extra data lines: the IDs `perLine` to a line after the list's line prefix, in the
+/// reference's field width (or separated by commas in free format), each line ending as
+/// `lineEnd`.
 std::string listLines(const NodeReference& like, const std::vector<Id>& ids,
                       std::string_view lineEnd) {
   std::string out;
   const std::size_t perLine = std::max<std::size_t>(like.perLine, 1);
   for (std::size_t i = 0; i < ids.size(); ++i) {
+    if (i % perLine == 0) out += like.linePrefix;
     if (like.width == 0 && i % perLine != 0) out += ',';
     out += fieldText(like, ids[i]);
     if (i % perLine == perLine - 1 || i + 1 == ids.size()) out += lineEnd;
@@ -232,7 +234,7 @@ std::vector<TextEdit> regionEdits(std::string_view text,
   }
   if (next < added.size()) {
     const NodeReference& last = *references.back();
-    const auto [begin, end] = lineAround(text, last.offset);
+    const auto [begin, end] = lineAround(text, last.listLast);
     std::string_view lineEnd = "\n";
     if (end >= begin + 2 && text.substr(end - 2, 2) == "\r\n") lineEnd = "\r\n";
     std::vector<Id> rest;

@@ -7,6 +7,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -213,7 +214,8 @@ AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& ne
   // reported, their node kept); lists and per-node data of regions cover the region's new nodes.
   const std::vector<assembly::NodeReference> references =
       assembly::findNodeReferences(model, partNodes);
-  std::map<std::pair<std::size_t, int>, std::vector<const assembly::NodeReference*>> regions;
+  std::map<std::tuple<std::size_t, std::size_t, int>, std::vector<const assembly::NodeReference*>>
+      regions;  // by block, card or keyword in it, role
   std::vector<assembly::NearestPoint> searches;
   searches.reserve(newParts.size());
   for (const QuadMesh& mesh : newParts) searches.emplace_back(mesh.points);
@@ -222,7 +224,8 @@ AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& ne
   for (const assembly::NodeReference& reference : references) {
     if (reference.role != assembly::NodeRole::Point &&
         reference.kind == assembly::ReferenceKind::Field) {
-      regions[{reference.block, static_cast<int>(reference.role)}].push_back(&reference);
+      regions[{reference.block, reference.group, static_cast<int>(reference.role)}].push_back(
+          &reference);
       continue;
     }
     if (!oldNodes.count(reference.node)) continue;  // a node that stays
@@ -280,9 +283,10 @@ AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& ne
       }
       const std::vector<assembly::RegionMember> added =
           assembly::regionMembers(sites, members, model, oldShells, oldNodes);
-      DeckBlock& block = model.blocks[key.first];
+      const std::size_t b = std::get<0>(key);
+      DeckBlock& block = model.blocks[b];
       for (assembly::TextEdit& edit : assembly::regionEdits(block.text, group, added, oldNodes))
-        edits[key.first].push_back(std::move(edit));
+        edits[b].push_back(std::move(edit));
       const bool located = block.line > 0;
       for (const assembly::RegionMember& member : added) {
         const assembly::NodeReference& source = *referenceOf.at(member.source);
