@@ -296,6 +296,37 @@ TEST(CliVolume, BadInputFailsWithoutOutput) {
     EXPECT_EQ(entry.path().filename(), "kept.png") << "left behind: " << entry.path();
 }
 
+TEST(CliVolume, DamagedLengthsInAVdbAreRefusedBeforeOpenVdbAllocatesThem) {
+  // OpenVDB allocates a string at the length the file states. A grid name said to be 4 GB long
+  // once made `inspect` allocate it; now the length is checked against the file first, within
+  // 600 MB of address space, naming the byte offset, and nothing is written.
+  const fs::path dir = scratchDir("cli-volume-damaged");
+  std::string bytes = readText(sampleVolume());
+  const std::size_t name = bytes.find(std::string("\x03\0\0\0sdf", 7));
+  ASSERT_NE(name, std::string::npos);
+  bytes.replace(name, 4, std::string("\xf0\xff\xff\xff", 4));
+  writeText(dir / "damaged.vdb", bytes);
+  std::vector<fs::path> files = {dir / "damaged.vdb"};
+  for (const char* reproducer : {"malformed/fuzzed_5gb.vdb", "malformed/bitflipped_8gb.vdb"})
+    if (fs::exists(voxremesh::test::sharedDeck(reproducer)))
+      files.push_back(voxremesh::test::sharedDeck(reproducer));
+  for (const fs::path& file : files)
+    for (const std::string& command :
+         {"inspect " + quoted(file), "extract " + quoted(file) + " -o " + quoted(dir / "x.obj")}) {
+      const voxremesh::test::CliResult run = runShell(
+          "prlimit --as=600000000 -- " + std::string(VOXREMESH_CLI) + " " + command + " 2>&1");
+      EXPECT_EQ(run.exitCode, 1) << command << ": " << run.output;
+      EXPECT_TRUE(contains(run.output, file.string() + ": byte offset ")) << run.output;
+      EXPECT_TRUE(contains(run.output, "a damaged .vdb file")) << run.output;
+    }
+  EXPECT_TRUE(contains(
+      runShell(std::string(VOXREMESH_CLI) + " inspect " + quoted(dir / "damaged.vdb") + " 2>&1")
+          .output,
+      ": byte offset " + std::to_string(name) +
+          ": the length of the name of grid 0 is 4294967280 bytes"));
+  EXPECT_FALSE(fs::exists(dir / "x.obj"));
+}
+
 TEST(CliVolume, UsageErrorsExitWithTwo) {
   const fs::path dir = scratchDir("cli-volume-usage");
   const std::string deck = quoted(samplePart());

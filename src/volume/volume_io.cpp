@@ -13,6 +13,7 @@
 #include <system_error>
 #include <utility>
 
+#include "volume/vdb_layout.h"
 #include "volume/volume_grids.h"
 #include "volume/volume_meta.h"
 #include "voxremesh/errors.h"
@@ -132,6 +133,7 @@ void openFile(openvdb::io::File& file, const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path, error)) {
     throw InputError(path.string(), 0, "no such file");
   }
+  volume::checkVdbLayout(path);
   try {
     file.open(/*delayLoad=*/false);
   } catch (const openvdb::Exception& e) {
