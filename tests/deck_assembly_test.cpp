@@ -460,14 +460,17 @@ TEST(DeckAssembly, AbaqusNsetAndBoundary) {
   mesh.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   mesh.faces = {{0, 1, 2, 3}};
   const AssemblyReport report = replacePartMeshes(model, {mesh});
+  // The point first (*BOUNDARY), then the set of the side from node 1 to 2 (a region: the new
+  // nodes 5 and 6 on it).
   ASSERT_EQ(report.remaps.size(), 3u);
-  EXPECT_EQ(report.remaps[0].keyword, "*NSET");
-  EXPECT_EQ(report.remaps[2].keyword, "*BOUNDARY");
+  EXPECT_EQ(report.remaps[0].keyword, "*BOUNDARY");
+  EXPECT_EQ(report.remaps[1].keyword, "*NSET");
+  EXPECT_EQ(report.remaps[2].keyword, "*NSET");
   // Lines within the block (the Abaqus reader does not record where it stood; it starts at
   // the *NSET of file line 8).
-  EXPECT_EQ(report.remaps[0].line, 2u);
+  EXPECT_EQ(report.remaps[0].line, 4u);
   EXPECT_EQ(report.remaps[1].line, 2u);
-  EXPECT_EQ(report.remaps[2].line, 4u);
+  EXPECT_EQ(report.remaps[2].line, 2u);
   for (const NodeRemap& remap : report.remaps) EXPECT_TRUE(remap.blockLine);
   EXPECT_EQ(report.unmapped.size(), 4u);
   for (const UnmappedReference& ref : report.unmapped) {
@@ -481,6 +484,64 @@ TEST(DeckAssembly, AbaqusNsetAndBoundary) {
   EXPECT_NE(out.find("7, 1, 6\n"), std::string::npos) << out;
   EXPECT_NE(out.find("1, 4, 1\n"), std::string::npos) << out;
   EXPECT_EQ(readDeck(dir / "out.inp").shells.size(), 1u);
+}
+
+TEST(DeckAssembly, AbaqusNodeSetsCoverTheSameRegionWithoutEmptyEntries) {
+  // A 2 x 2 plate of unit quads remeshed finer (3 x 3 quads) and coarser (1 quad). The set of the
+  // side x = 0 and the set of all nodes must list exactly the new nodes there; Abaqus reads no
+  // empty entry, so a field left over (the coarser mesh) repeats a member.
+  std::string deck = "*NODE\n";
+  for (int n = 0; n < 9; ++n)
+    deck += std::to_string(n + 1) + ", " + std::to_string(n % 3) + "., " + std::to_string(n / 3) +
+            "., 0.\n";
+  deck +=
+      "*ELEMENT, TYPE=S4R, ELSET=PLATE\n1, 1, 2, 5, 4\n2, 2, 3, 6, 5\n3, 4, 5, 8, 7\n"
+      "4, 5, 6, 9, 8\n*NSET, NSET=SIDE\n1, 4, 7\n*NSET, NSET=ALL\n1, 2, 3, 4, 5, 6, 7, 8, 9\n";
+  const auto dir = scratchDir("assembly_abaqus_regions");
+  writeText(dir / "in.inp", deck);
+  for (const int cells : {3, 1}) {
+    FeModel model = readDeck(dir / "in.inp");
+    QuadMesh mesh;
+    mesh.part = model.parts[0].id;
+    for (int j = 0; j <= cells; ++j)
+      for (int i = 0; i <= cells; ++i) mesh.points.push_back({2.0 * i / cells, 2.0 * j / cells, 0});
+    for (int j = 0; j < cells; ++j)
+      for (int i = 0; i < cells; ++i) {
+        const CornerIndex a = CornerIndex(i + (cells + 1) * j);
+        mesh.faces.push_back({a, a + 1, a + CornerIndex(cells) + 2, a + CornerIndex(cells) + 1});
+      }
+    replacePartMeshes(model, {mesh});
+    writeDeck(model, dir / "out.inp");
+    const std::string out = readText(dir / "out.inp");
+    // The entries of a set's data lines (up to the next keyword), each non-empty.
+    const auto members = [&](const std::string& name) {
+      std::set<Id> ids;
+      std::size_t at = out.find("*NSET, NSET=" + name + "\n");
+      at = out.find('\n', at) + 1;
+      while (at < out.size() && out[at] != '*') {
+        const std::size_t end = out.find('\n', at);
+        std::size_t begin = at;
+        for (std::size_t c = at; c <= end; ++c)
+          if (c == end || out[c] == ',') {
+            const std::string token = out.substr(begin, c - begin);
+            EXPECT_NE(token.find_first_not_of(' '), std::string::npos) << "an empty entry:\n"
+                                                                       << out;
+            if (token.find_first_not_of(' ') != std::string::npos) ids.insert(std::stoll(token));
+            begin = c + 1;
+          }
+        at = end + 1;
+      }
+      return ids;
+    };
+    std::set<Id> all, side;
+    for (const auto& [id, xyz] : nodesById(model)) {
+      all.insert(id);
+      if (xyz[0] == 0.0) side.insert(id);
+    }
+    EXPECT_EQ(all.size(), std::size_t((cells + 1) * (cells + 1)));
+    EXPECT_EQ(members("SIDE"), side) << out;
+    EXPECT_EQ(members("ALL"), all) << out;
+  }
 }
 
 TEST(DeckAssembly, BadMeshesLeaveTheModelUnchanged) {

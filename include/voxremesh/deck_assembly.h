@@ -43,8 +43,9 @@
 //     Abaqus   *NSET, *BOUNDARY, *CLOAD, *ELEMENT (non-shell types)
 //   A rewritten field keeps its columns (fixed format: right-aligned in the field's width;
 //   free format: the token replaced); every other byte of the deck stays as it was.
-// - Regions: the node lists LS-DYNA *SET_NODE and *SET_NODE_LIST (_TITLE) and Nastran SET1 and
-//   SPC1, and the per-node data lines of *INITIAL_VELOCITY_NODE, name a region, not points. A new node joins a keyword's region when
+// - Regions: the node lists LS-DYNA *SET_NODE and *SET_NODE_LIST (_TITLE), Nastran SET1 and
+//   SPC1 and Abaqus *NSET, and the per-node data lines of *INITIAL_VELOCITY_NODE, name a region,
+//   not points. A new node joins a keyword's region when
 //   the old shell it lies on (its closest point on the part's old shells) has all corners in the
 //   region, or it lies on an edge of that shell whose two ends are in it (a set along a side),
 //   or on a corner in it; an old member on no such shell or edge (an isolated node) gives the
@@ -52,8 +53,10 @@
 //   when fewer new nodes join) and in lines of the same layout after its last reference; a data
 //   line is repeated for every new node whose nearest joining member is its node, and dropped
 //   when that node is removed. Nastran lists grow by continuation lines (8 small fields, 4 large
-//   ones, or a leading comma in free format). Each new member is a NodeRemap from that member.
-//   Abaqus *NSET lists are still rewritten point by point.
+//   ones, or a leading comma in free format), Abaqus lists by lines of at most 16 entries; Abaqus
+//   reads no empty entry, so there a field left over repeats a member. When no new node joins
+//   a region whose members are all removed, each gives its nearest new node. Each new member is
+//   a NodeRemap from that member.
 // - Unmapped references: a reference that cannot be rewritten (a range such as *SET_NODE_LIST_
 //   GENERATE, SPC1 THRU or *NSET GENERATE covering an old node; a new ID wider than its fixed
 //   field; a tab-expanded Nastran field), and any integer equal to an old node ID in keywords

@@ -21,6 +21,7 @@ bool isKeyword(std::string_view line) {
 struct Keyword {
   std::string name;
   bool generate = false;
+  std::size_t begin = 0;  ///< the offset of its line in the block
 };
 
 Keyword parseKeyword(std::string_view line) {
@@ -79,6 +80,7 @@ void forEachDataLine(std::string_view text, Visit visit) {
     }
     if (isKeyword(line)) {
       keyword = parseKeyword(line);
+      keyword.begin = cursor.begin();
       keywordContinues = !io::trim(line).empty() && io::trim(line).back() == ',';
       continued = false;
       continue;
@@ -112,7 +114,19 @@ void scanAbaqusBlock(std::string_view text, const ReferenceSink& sink) {
           sink.addRange(number, first, last, step, name);
         return;
       }
-      for (std::size_t i = 0; i < fields.size(); ++i) addToken(i);
+      for (std::size_t i = 0; i < fields.size(); ++i) {
+        const std::size_t before = sink.references.size();
+        addToken(i);
+        if (sink.references.size() == before) continue;
+        // A list: new members go on lines of at most 16 after its last reference; Abaqus reads
+        // no empty entry, so a field left over repeats a member (a node set holds it once).
+        NodeReference& member = sink.references.back();
+        member.role = NodeRole::Member;
+        member.group = keyword.begin;
+        member.listLast = member.offset;
+        member.perLine = 16;
+        member.blankAllowed = false;
+      }
     } else if (name == "*BOUNDARY" || name == "*CLOAD") {
       addToken(0);
     } else if (name == "*ELEMENT") {

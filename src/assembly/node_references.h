@@ -44,6 +44,7 @@ struct NodeReference {
   std::size_t listLast = 0;  ///< Member: an offset within the list's last line
   std::size_t perLine = 0;   ///< Member: IDs per added line
   std::string linePrefix;    ///< Member: what an added line starts with (a continuation field)
+  bool blankAllowed = true;  ///< Member: a field left over may be blank (else it repeats a member)
 };
 
 /// A replacement in a block's text: `length` characters at `offset` become `text`.

@@ -143,7 +143,15 @@ std::vector<RegionMember> regionMembers(const std::vector<NewNodeSite>& sites,
         RegionMember{site.node, source,
                      geom::distance(site.xyz, model.nodes[nodeIndex.at(source)].xyz), site.part};
   }
-  const std::vector<Id> isolated = isolatedMembers(oldShells, members, removed);
+  // Isolated members give their nearest new node; so do all removed ones when no new node
+  // joined (a line of nodes the new mesh has no node on), so that no region is lost.
+  std::vector<Id> isolated = isolatedMembers(oldShells, members, removed);
+  if (joined.empty()) {
+    isolated.clear();
+    for (const Id node : members)
+      if (removed.count(node)) isolated.push_back(node);
+    std::sort(isolated.begin(), isolated.end());
+  }
   if (!isolated.empty() && !sites.empty()) {
     std::vector<Vec3> points;
     points.reserve(sites.size());
@@ -224,12 +232,18 @@ std::vector<TextEdit> regionEdits(std::string_view text,
     }
     return edits;
   }
-  // A list: new IDs first into the fields of removed members, the rest in lines after the last.
+  // A list: new IDs first into the fields of removed members, the rest in lines after the last;
+  // a field left over is blank, or where blanks are not read, repeats a member.
+  Id repeated = added.empty() ? 0 : added.front().node;
+  for (const NodeReference* reference : references)
+    if (repeated == 0 && !removed.count(reference->node)) repeated = reference->node;
   std::size_t next = 0;
   for (const NodeReference* reference : references) {
     if (!removed.count(reference->node)) continue;
     std::string field = next < added.size() ? fieldText(*reference, added[next++].node)
-                                            : std::string(reference->width, ' ');
+                        : reference->blankAllowed || repeated == 0
+                            ? std::string(reference->width, ' ')
+                            : fieldText(*reference, repeated);
     edits.push_back(TextEdit{reference->offset, reference->length, std::move(field)});
   }
   if (next < added.size()) {
