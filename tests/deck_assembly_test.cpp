@@ -437,6 +437,76 @@ TEST(DeckAssembly, NastranSetAndSpcListsCoverTheSameRegionOfTheNewMesh) {
   EXPECT_EQ(listed("SPC1,88,123,", true), side) << out;
 }
 
+TEST(DeckAssembly, PressureLoadsOnRemovedShellsGoToTheNewShellsOnThem) {
+  // A 2 x 2 plate of unit quads (shells 1..4) remeshed as 4 x 4 quads of side 1/2. PLOAD4 of 5.0
+  // on shell 1 and of 7.0 (with a continuation line) on shell 4: each new shell whose centroid
+  // lies on shell 1 or 4 gets that card with its own ID, and no card names a removed shell.
+  std::string deck = "BEGIN BULK\n";
+  char line[96];
+  for (int n = 0; n < 9; ++n) {
+    std::snprintf(line, sizeof line, "GRID    %8d        %8.1f%8.1f%8.1f\n", n + 1, double(n % 3),
+                  double(n / 3), 0.0);
+    deck += line;
+  }
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const int a = 1 + i + 3 * j;
+      std::snprintf(line, sizeof line, "CQUAD4  %8d       1%8d%8d%8d%8d\n", 1 + i + 2 * j, a, a + 1,
+                    a + 4, a + 3);
+      deck += line;
+    }
+  deck +=
+      "PLOAD4         9       1     5.0\n"
+      "PLOAD4         9       4     7.0                                        +\n"
+      "+              0      0.      0.     -1.\n"
+      "PSHELL         1       1     1.0\nMAT1           1  2.1+5            .3\nENDDATA\n";
+  const auto dir = scratchDir("assembly_nastran_loads");
+  writeText(dir / "in.bdf", deck);
+  FeModel model = readDeck(dir / "in.bdf");
+  QuadMesh mesh;
+  mesh.part = 1;
+  for (int j = 0; j <= 4; ++j)
+    for (int i = 0; i <= 4; ++i) mesh.points.push_back({0.5 * i, 0.5 * j, 0.0});
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const CornerIndex a = CornerIndex(i + 5 * j);
+      mesh.faces.push_back({a, a + 1, a + 6, a + 5});
+    }
+  const AssemblyReport report = replacePartMeshes(model, {mesh});
+  EXPECT_EQ(report.elementLoadsRewritten, 2u);
+  EXPECT_TRUE(report.unmapped.empty()) << "an element ID is no node reference";
+  writeDeck(model, dir / "out.bdf");
+  const std::string out = readText(dir / "out.bdf");
+  // The expected cards: new shell (i, j) has ID first + i + 4 j and its centroid at
+  // (0.5 i + 0.25, 0.5 j + 0.25): on old shell 1 when both are below 1, on 4 when both above.
+  std::multiset<std::string> expected, found;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const Id id = report.firstNewElementId + i + 4 * j;
+      if (i < 2 && j < 2) expected.insert(std::to_string(id) + " 5.0");
+      if (i >= 2 && j >= 2) expected.insert(std::to_string(id) + " 7.0 -1.");
+    }
+  const auto field = [](const std::string& row, std::size_t k) {
+    const std::string text = row.size() > 8 * k ? row.substr(8 * k, 8) : std::string();
+    const std::size_t first = text.find_first_not_of(' ');
+    return first == std::string::npos ? std::string()
+                                      : text.substr(first, text.find(' ', first) - first);
+  };
+  std::vector<std::string> rows;
+  for (std::size_t at = 0; at < out.size();) {
+    const std::size_t end = out.find('\n', at);
+    rows.push_back(out.substr(at, end - at));
+    at = end + 1;
+  }
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    if (rows[r].rfind("PLOAD4", 0) != 0) continue;
+    std::string entry = field(rows[r], 2) + " " + field(rows[r], 3);
+    if (r + 1 < rows.size() && rows[r + 1][0] == '+') entry += " " + field(rows[r + 1], 4);
+    found.insert(entry);
+  }
+  EXPECT_EQ(found, expected) << out;
+}
+
 TEST(DeckAssembly, AbaqusNsetAndBoundary) {
   const auto dir = scratchDir("assembly_abaqus");
   writeText(dir / "in.inp",

@@ -38,8 +38,8 @@
 //              *BOUNDARY_PRESCRIBED_MOTION_NODE, *INITIAL_VELOCITY_NODE, *LOAD_NODE_POINT,
 //              *ELEMENT_MASS, *ELEMENT_BEAM, *ELEMENT_DISCRETE, *ELEMENT_SPH
 //     Nastran  SPC, SPCD, SPC1, SET1, RBE2, RBE3, CONM2, CBUSH, CBAR, CBEAM, CROD, CONROD, CELAS1,
-//              CELAS2, CDAMP1, CDAMP2, CWELD (GS, GA, GB), PLOTEL, FORCE, MOMENT, CORD1R/C/S,
-//              CHEXA, CPENTA, CTETRA
+//              CELAS2, CDAMP1, CDAMP2, CWELD (GS, GA, GB), PLOTEL, FORCE, MOMENT, PLOAD4 (G1, G3),
+//              CORD1R/C/S, CHEXA, CPENTA, CTETRA
 //     Abaqus   *NSET, *BOUNDARY, *CLOAD, *ELEMENT (non-shell types)
 //   A rewritten field keeps its columns (fixed format: right-aligned in the field's width;
 //   free format: the token replaced); every other byte of the deck stays as it was.
@@ -57,6 +57,9 @@
 //   reads no empty entry, so there a field left over repeats a member. When no new node joins
 //   a region whose members are all removed, each gives its nearest new node. Each new member is
 //   a NodeRemap from that member.
+// - Loads on elements: a Nastran PLOAD4 on a removed shell is repeated, continuation lines and
+//   all, for every new shell whose centroid lies on that shell (closest), with the new shell's
+//   ID, and dropped itself (a PLOAD4 THRU range is left as it is).
 // - Unmapped references: a reference that cannot be rewritten (a range such as *SET_NODE_LIST_
 //   GENERATE, SPC1 THRU or *NSET GENERATE covering an old node; a new ID wider than its fixed
 //   field; a tab-expanded Nastran field), and any integer equal to an old node ID in keywords
@@ -65,7 +68,7 @@
 //   containing _NODE, except those naming sets, parts or contacts: a name (without _TITLE or
 //   _ID) ending in _SET or holding _SET_, ending in _RIGID, *CONTACT_..., *CONSTRAINED_RIGID_
 //   BODIES; Nastran cards starting with C or R, MPC, ASET, OMIT, SUPORT, FORCE1/2,
-//   MOMENT1/2, PLOAD4, TEMP; Abaqus *EQUATION, *MPC, *INITIAL CONDITIONS, *KINEMATIC COUPLING) is
+//   MOMENT1/2, TEMP; Abaqus *EQUATION, *MPC, *INITIAL CONDITIONS, *KINEMATIC COUPLING) is
 //   listed in UnmappedReference and its node is kept (detached from the new mesh), never
 //   dropped. Such a scan cannot tell a node ID from another number that happens to be equal, so
 //   it may list false alarms; it never changes the deck.
@@ -120,10 +123,11 @@ struct AssemblyReport {
   std::vector<NodeRemap> remaps;     ///< in deck order
   std::vector<UnmappedReference> unmapped;
   std::size_t removedNodes = 0;
-  std::size_t keptOldNodes = 0;          ///< old nodes kept for unmapped references
-  std::size_t seamPoints = 0;            ///< points that took a kept-shell node (rule a)
-  std::size_t mergedJunctionPoints = 0;  ///< points that took another mesh's node (rule b)
-  std::size_t hardPointsKept = 0;        ///< hard points that new points took (rule c)
+  std::size_t keptOldNodes = 0;           ///< old nodes kept for unmapped references
+  std::size_t seamPoints = 0;             ///< points that took a kept-shell node (rule a)
+  std::size_t mergedJunctionPoints = 0;   ///< points that took another mesh's node (rule b)
+  std::size_t hardPointsKept = 0;         ///< hard points that new points took (rule c)
+  std::size_t elementLoadsRewritten = 0;  ///< loads on removed shells given to the new ones
   std::size_t newNodes = 0;
   Id firstNewNodeId = 0;     ///< 0 when no node was added
   Id firstNewElementId = 0;  ///< 0 when no element was added

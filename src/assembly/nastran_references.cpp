@@ -50,14 +50,15 @@ constexpr CardSpec kCards[] = {
     {"CPENTA", {-1}, 2},
     {"CTETRA", {-1}, 2},
     {"RBE3", {2, -1}},
+    {"PLOAD4", {6, 7, -1}},  // G1 and G3 of a solid face (its element: scanLoads)
 };
 
 /// Cards not read field by field whose data may still name grids (their first field, the card's
 /// own ID, is not scanned).
 bool mayNameGrids(const std::string& name) {
-  static constexpr std::string_view kNames[] = {"MPC",     "ASET",    "ASET1",  "OMIT",   "OMIT1",
-                                                "SUPORT",  "SUPORT1", "FORCE1", "FORCE2", "MOMENT1",
-                                                "MOMENT2", "PLOAD4",  "TEMP"};
+  static constexpr std::string_view kNames[] = {"MPC",    "ASET",    "ASET1",   "OMIT",
+                                                "OMIT1",  "SUPORT",  "SUPORT1", "FORCE1",
+                                                "FORCE2", "MOMENT1", "MOMENT2", "TEMP"};
   for (std::string_view known : kNames)
     if (name == known) return true;
   if (name.compare(0, 4, "CORD") == 0) return false;  // CORD2x: coordinates and system IDs
@@ -113,6 +114,7 @@ class CardScanner {
       }
     }
     std::vector<std::size_t> gridFields;
+    if (card.name == "PLOAD4" && io::iequals(fields[6], "THRU")) return;  // elements, no grids
     for (const std::int8_t k : spec->fields)
       if (k >= 0) gridFields.push_back(static_cast<std::size_t>(k));
     if (spec->allFrom >= 0)
@@ -164,6 +166,33 @@ class CardScanner {
     }
   }
 
+ public:
+  /// A PLOAD4 on a watched element: a Record of the whole card (a THRU range is left as it is).
+  void scanLoads(const Card& card) {
+    if (card.name != "PLOAD4") return;
+    nastran::CardFields fields;
+    try {
+      fields.start(&name_, card.lines[0].first, card.lines[0].second);
+      for (std::size_t i = 1; i < card.lines.size(); ++i)
+        fields.addContinuation(card.lines[i].first, card.lines[i].second);
+    } catch (const InputError&) {
+      return;
+    }
+    std::int64_t element = 0;
+    if (io::iequals(fields[6], "THRU") || !integerField(fields[1], element) ||
+        !sink_.watched.count(element))
+      return;
+    const std::size_t before = sink_.references.size();
+    addField(card, fields, 1, element);
+    if (sink_.references.size() == before) return;
+    NodeReference& load = sink_.references.back();
+    load.role = NodeRole::Record;
+    load.group = card.lineBegins.front();
+    load.recordFirst = card.lineBegins.front();
+    load.recordLast = card.lineBegins.back();
+  }
+
+ private:
   /// Marks a reference as a member of the card's list: new grids go on continuation lines after
   /// the card's last line, in its field width (8 to a small-field line, 4 to a large-field one,
   /// after a comma in free format).
@@ -239,6 +268,11 @@ void forEachCard(std::string_view text, Visit visit) {
 void scanNastranBlock(std::string_view text, const ReferenceSink& sink) {
   CardScanner scanner(sink);
   forEachCard(text, [&](const Card& card) { scanner.scan(card); });
+}
+
+void scanNastranLoads(std::string_view text, const ReferenceSink& sink) {
+  CardScanner scanner(sink);
+  forEachCard(text, [&](const Card& card) { scanner.scanLoads(card); });
 }
 
 Id nastranMaxElementId(std::string_view text) {

@@ -31,6 +31,18 @@ std::vector<NodeReference> findNodeReferences(const FeModel& model,
   return references;
 }
 
+std::vector<NodeReference> findElementReferences(const FeModel& model,
+                                                 const std::unordered_set<Id>& watched) {
+  std::vector<NodeReference> references;
+  if (watched.empty() || model.sourceFormat != DeckFormat::Nastran) return references;
+  for (std::size_t b = 0; b < model.blocks.size(); ++b) {
+    const DeckBlock& block = model.blocks[b];
+    if (block.kind != DeckBlock::Kind::Verbatim || block.text.empty()) continue;
+    scanNastranLoads(block.text, ReferenceSink{b, watched, references});
+  }
+  return references;
+}
+
 Id maxVerbatimElementId(const FeModel& model) {
   Id largest = 0;
   for (const DeckBlock& block : model.blocks) {

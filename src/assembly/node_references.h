@@ -45,6 +45,9 @@ struct NodeReference {
   std::size_t perLine = 0;   ///< Member: IDs per added line
   std::string linePrefix;    ///< Member: what an added line starts with (a continuation field)
   bool blankAllowed = true;  ///< Member: a field left over may be blank (else it repeats a member)
+  /// Record: offsets within the first and last line of the record (a card with continuation
+  /// lines); both 0: the reference's line.
+  std::size_t recordFirst = 0, recordLast = 0;
 };
 
 /// A replacement in a block's text: `length` characters at `offset` become `text`.
@@ -58,6 +61,12 @@ struct TextEdit {
 /// text order.
 std::vector<NodeReference> findNodeReferences(const FeModel& model,
                                               const std::unordered_set<Id>& watched);
+
+/// Finds the references to the shell elements of `watched` in the verbatim blocks of `model`:
+/// Nastran PLOAD4 cards (a Record each, spanning its continuation lines; a PLOAD4 THRU range is
+/// left as it is). Deterministic, in block order and text order.
+std::vector<NodeReference> findElementReferences(const FeModel& model,
+                                                 const std::unordered_set<Id>& watched);
 
 /// The largest element ID named by the verbatim element keywords of the model (first field of
 /// the data lines of LS-DYNA *ELEMENT_..., Nastran element and rigid element cards, Abaqus

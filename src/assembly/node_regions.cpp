@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <set>
 #include <string>
 #include <unordered_map>
 
@@ -54,6 +55,34 @@ std::vector<NewNodeSite> locateNewNodes(const FeModel& model, const std::vector<
     }
   }
   return sites;
+}
+
+std::vector<RegionMember> hostShells(const FeModel& model, const std::vector<QuadMesh>& meshes,
+                                     Id firstNew) {
+  std::vector<RegionMember> hosts;
+  Id next = firstNew;
+  for (const QuadMesh& mesh : meshes) {
+    std::vector<Vec3> centroids;
+    centroids.reserve(mesh.faces.size());
+    for (const auto& face : mesh.faces) {
+      const int n = cornerCount(face);
+      Vec3 sum{0.0, 0.0, 0.0};
+      for (int c = 0; c < n; ++c) sum = sum + mesh.points[face[std::size_t(c)]];
+      centroids.push_back(sum * (1.0 / n));
+    }
+    std::vector<Id> oldIds;
+    for (const Shell& shell : model.shells)
+      if (shell.part == mesh.part) oldIds.push_back(shell.id);
+    const ReferenceSurface surface(quadMeshFromModel(model, mesh.part));
+    if (surface.empty() || centroids.empty()) {
+      next += Id(mesh.faces.size());
+      continue;
+    }
+    const std::vector<SurfaceHit> hits = surface.closestPoints(centroids);
+    for (std::size_t f = 0; f < hits.size(); ++f)
+      hosts.push_back(RegionMember{next++, oldIds[hits[f].face], hits[f].distance, mesh.part});
+  }
+  return hosts;
 }
 
 namespace {
@@ -214,15 +243,19 @@ std::vector<TextEdit> regionEdits(std::string_view text,
   if (references.front()->role == NodeRole::Record) {
     std::unordered_map<Id, std::vector<Id>> newOf;  // source -> its new nodes, ascending
     for (const RegionMember& member : added) newOf[member.source].push_back(member.node);
-    std::unordered_set<Id> written;
+    std::set<std::pair<Id, std::size_t>> written;  // (node, group): a record repeated once
     for (const NodeReference* reference : references) {
-      const auto [begin, end] = lineAround(text, reference->offset);
+      const bool oneLine = reference->recordFirst == 0 && reference->recordLast == 0;
+      const std::size_t begin =
+          lineAround(text, oneLine ? reference->offset : reference->recordFirst).first;
+      const std::size_t end =
+          lineAround(text, oneLine ? reference->offset : reference->recordLast).second;
       const std::string_view line = text.substr(begin, end - begin);
       const std::size_t at = reference->offset - begin;
       std::string out;
       if (!removed.count(reference->node)) out += line;
       const auto found = newOf.find(reference->node);
-      if (found != newOf.end() && written.insert(reference->node).second)
+      if (found != newOf.end() && written.emplace(reference->node, reference->group).second)
         for (const Id node : found->second) {
           std::string copy(line);
           copy.replace(at, reference->length, fieldText(*reference, node));

@@ -55,6 +55,12 @@ std::vector<RegionMember> regionMembers(const std::vector<NewNodeSite>& sites,
                                         const std::vector<Shell>& oldShells,
                                         const std::unordered_set<Id>& removed);
 
+/// Per new shell (IDs from `firstNew` in mesh and face order, as replacePartMeshes numbers
+/// them), the old shell of its part its centroid lies on (the closest): `node` is the new shell's
+/// ID, `source` the old one's, `distance` between the centroid and that shell.
+std::vector<RegionMember> hostShells(const FeModel& model, const std::vector<QuadMesh>& meshes,
+                                     Id firstNew);
+
 /// The edits that make one block's references of one region role cover the new members: a
 /// Member list gets the new IDs in the fields of its removed members (blanked when left over)
 /// and in lines added after its last reference; a Record line is repeated for each new node whose

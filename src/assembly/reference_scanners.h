@@ -40,6 +40,8 @@ void scanLsDynaBlock(std::string_view text, io::lsdyna::CardFormat deckFormat,
                      const ReferenceSink& sink);
 /// Scans one run of Nastran bulk data lines.
 void scanNastranBlock(std::string_view text, const ReferenceSink& sink);
+/// Scans one run of Nastran bulk data lines for loads on watched elements (PLOAD4).
+void scanNastranLoads(std::string_view text, const ReferenceSink& sink);
 /// Scans one run of Abaqus input lines.
 void scanAbaqusBlock(std::string_view text, const ReferenceSink& sink);
 

@@ -296,6 +296,22 @@ AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& ne
       }
     }
   }
+  // Loads on removed shells: each new shell takes those of the old shell its centroid lies on.
+  std::unordered_set<Id> oldShellIds;
+  for (const Shell& shell : oldShells) oldShellIds.insert(shell.id);
+  const std::vector<assembly::NodeReference> loads =
+      assembly::findElementReferences(model, oldShellIds);
+  if (!loads.empty()) {
+    const std::vector<assembly::RegionMember> hosts =
+        assembly::hostShells(model, newParts, maxElement + 1);
+    std::map<std::size_t, std::vector<const assembly::NodeReference*>> loadsOfBlock;
+    for (const assembly::NodeReference& load : loads) loadsOfBlock[load.block].push_back(&load);
+    for (const auto& [b, group] : loadsOfBlock)
+      for (assembly::TextEdit& edit :
+           assembly::regionEdits(model.blocks[b].text, group, hosts, oldShellIds))
+        edits[b].push_back(std::move(edit));
+    report.elementLoadsRewritten = loads.size();
+  }
   // Apply the edits of each block from its end, so that earlier offsets stay valid.
   for (std::size_t b = 0; b < edits.size(); ++b) {
     std::stable_sort(edits[b].begin(), edits[b].end(),

@@ -407,10 +407,10 @@ std::string remeshReportJson(const RemeshReport& report) {
   std::snprintf(buffer, sizeof buffer,
                 "\n  ],\n  \"t_junction_edges_in\": %zu,\n  \"t_junction_edges_out\": %zu,\n"
                 "  \"removed_nodes\": %zu,\n  \"new_nodes\": %zu,\n  \"hard_points_kept\": %zu,\n"
-                "  \"seconds\": %.6f\n}\n",
+                "  \"element_loads_rewritten\": %zu,\n  \"seconds\": %.6f\n}\n",
                 report.seamsBefore.tJunctionEdges, report.seamsAfter.tJunctionEdges,
                 assembly.removedNodes, assembly.newNodes, assembly.hardPointsKept,
-                report.totalSeconds);
+                assembly.elementLoadsRewritten, report.totalSeconds);
   return out + buffer;
 }
 
