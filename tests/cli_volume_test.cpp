@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -306,7 +307,14 @@ TEST(CliVolume, DamagedLengthsInAVdbAreRefusedBeforeOpenVdbAllocatesThem) {
   ASSERT_NE(name, std::string::npos);
   bytes.replace(name, 4, std::string("\xf0\xff\xff\xff", 4));
   writeText(dir / "damaged.vdb", bytes);
+  // Also the fuzzer's findings (tests/fuzz/findings: a 2 GB metadata name in a second grid, a
+  // garbage format version whose OpenVDB read took 4 GB or hung building its message).
   std::vector<fs::path> files = {dir / "damaged.vdb"};
+  for (const auto& entry :
+       fs::directory_iterator(fs::path(VOXREMESH_SOURCE_DIR) / "tests" / "fuzz" / "findings"))
+    if (entry.path().extension() == ".vdb") files.push_back(entry.path());
+  std::sort(files.begin() + 1, files.end());
+  ASSERT_GE(files.size(), 4u);
   for (const char* reproducer : {"malformed/fuzzed_5gb.vdb", "malformed/bitflipped_8gb.vdb"})
     if (fs::exists(voxremesh::test::sharedDeck(reproducer)))
       files.push_back(voxremesh::test::sharedDeck(reproducer));

@@ -105,17 +105,30 @@ class LayoutReader {
   std::uint64_t position_ = 0;
 };
 
-/// The header up to the file metadata; false when the file is not one of the versions checked.
-bool header(LayoutReader& reader, std::uint32_t& version) {
+/// The header up to the file metadata; false when the file is no .vdb file (left to OpenVDB to
+/// say so). Throws InputError for a format version other than 222..224 or a file without grid
+/// offsets (a stream): OpenVDB would read those without the checks here.
+bool header(LayoutReader& reader) {
   const std::uint64_t end = reader.size();
   std::int64_t magic = 0;
-  std::uint32_t libraryMajor = 0, libraryMinor = 0;
+  std::uint32_t version = 0, libraryMajor = 0, libraryMinor = 0;
   char hasGridOffsets = 0;
-  if (!reader.value(magic, end) || magic != kVdbMagic || !reader.value(version, end) ||
-      version < kFirstCheckedVersion || version > kLastCheckedVersion ||
-      !reader.value(libraryMajor, end) || !reader.value(libraryMinor, end) ||
-      !reader.value(hasGridOffsets, end) || hasGridOffsets == 0)
-    return false;
+  if (!reader.value(magic, end) || magic != kVdbMagic) return false;
+  const std::uint64_t versionAt = reader.position();
+  if (!reader.value(version, end)) return false;
+  if (version < kFirstCheckedVersion || version > kLastCheckedVersion) {
+    reader.seek(versionAt);
+    reader.fail("file format version " + std::to_string(version) + "; versions " +
+                std::to_string(kFirstCheckedVersion) + " to " +
+                std::to_string(kLastCheckedVersion) + " are read");
+  }
+  if (!reader.value(libraryMajor, end) || !reader.value(libraryMinor, end)) return false;
+  const std::uint64_t offsetsAt = reader.position();
+  if (!reader.value(hasGridOffsets, end)) return false;
+  if (hasGridOffsets == 0) {
+    reader.seek(offsetsAt);
+    reader.fail("a stream without grid offsets; files written by OpenVDB's io::File are read");
+  }
   constexpr std::uint64_t kUuidCharacters = 36;  // written as text, with hyphens
   if (kUuidCharacters > end - reader.position()) return false;
   reader.seek(reader.position() + kUuidCharacters);
@@ -123,7 +136,7 @@ bool header(LayoutReader& reader, std::uint32_t& version) {
 }
 
 /// One grid: its descriptor, then at its position its compression flags, metadata and transform
-/// type. False when the file ends where OpenVDB will report it.
+/// type. False when the file ends inside the descriptor (OpenVDB reports that).
 bool grid(LayoutReader& reader, std::size_t index) {
   const std::string which = "grid " + std::to_string(index);
   const std::uint64_t size = reader.size();
@@ -146,12 +159,13 @@ bool grid(LayoutReader& reader, std::size_t index) {
                 std::to_string(blockPos) + ", " + std::to_string(endPos) +
                 ") are not in order within the file of " + std::to_string(size) + " bytes");
   }
+  // Its compression flags, metadata and transform type lie before its blocks (a grid too short
+  // for them is left to OpenVDB); then the next descriptor follows its end, as OpenVDB reads.
   reader.seek(static_cast<std::uint64_t>(gridPos));
   const std::uint64_t blocks = static_cast<std::uint64_t>(blockPos);
   std::uint32_t compression = 0;
-  if (!reader.value(compression, blocks) || !reader.metadata(blocks, "the metadata of " + which) ||
-      !reader.string(blocks, "the transform type of " + which))
-    return false;
+  if (reader.value(compression, blocks) && reader.metadata(blocks, "the metadata of " + which))
+    reader.string(blocks, "the transform type of " + which);
   reader.seek(static_cast<std::uint64_t>(endPos));
   return true;
 }
@@ -160,8 +174,7 @@ bool grid(LayoutReader& reader, std::size_t index) {
 
 void checkVdbLayout(const std::filesystem::path& path) {
   LayoutReader reader(path);
-  std::uint32_t version = 0;
-  if (!header(reader, version)) return;
+  if (!header(reader)) return;
   if (!reader.metadata(reader.size(), "the file metadata")) return;
   std::int32_t grids = 0;
   const std::uint64_t countAt = reader.position();

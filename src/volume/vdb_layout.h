@@ -8,11 +8,11 @@
 namespace voxremesh::volume {
 
 /// Walks the header, the file metadata, the grid descriptors and each grid's metadata and
-/// transform type of a .vdb file (format versions 222 to 224, with grid offsets, as voxremesh and
-/// OpenVDB 10 write them), checking every stated length and position against the bytes the file
-/// holds. Files of other versions or without grid offsets are left to OpenVDB.
+/// transform type of a .vdb file, checking every stated length and position against the bytes
+/// the file holds. A file without the .vdb magic number is left to OpenVDB to refuse.
 /// Throws InputError naming the file and the byte offset of the first length or position that
-/// points past the end of the file (or of its grid).
+/// points past the end of the file (or of its grid), of a format version other than 222 to 224
+/// (those voxremesh and OpenVDB 10 write), or of a file without grid offsets (a stream).
 void checkVdbLayout(const std::filesystem::path& path);
 
 }  // namespace voxremesh::volume

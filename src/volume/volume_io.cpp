@@ -137,7 +137,9 @@ void openFile(openvdb::io::File& file, const std::filesystem::path& path) {
   try {
     file.open(/*delayLoad=*/false);
   } catch (const openvdb::Exception& e) {
-    throw InputError(path.string(), 0, std::string("not a readable .vdb file (") + e.what() + ")");
+    // OpenVDB's message may quote a name read from the file: at most its start.
+    throw InputError(path.string(), 0,
+                     "not a readable .vdb file (" + std::string(e.what()).substr(0, 200) + ")");
   }
 }
 
@@ -163,7 +165,8 @@ Volume readSheet(openvdb::io::File& file, const openvdb::MetaMap& meta, std::siz
     v.invalid = readMaskGrid(file, volume::kInvalidGridName + suffix, name);
     v.feature = readMaskGrid(file, volume::kFeatureGridName + suffix, name);
   } catch (const openvdb::Exception& e) {
-    throw InputError(name, 0, std::string("cannot read the grids (") + e.what() + ")");
+    throw InputError(name, 0,
+                     "cannot read the grids (" + std::string(e.what()).substr(0, 200) + ")");
   }
   v.sdf->setName(volume::kSdfGridName);
   v.invalid->setName(volume::kInvalidGridName);
