@@ -79,6 +79,42 @@ FeModel twoQuads(Id partA, Id partB) {
   return model;
 }
 
+/// A Nastran deck of a 2 x 2 plate of unit quads in part 1 (grid (i, j): ID 1 + i + 3 j at
+/// (i, j, 0); shell (i, j): ID 1 + i + 2 j), with `cards` after its shells.
+std::string nastranPlateDeck(const std::string& cards) {
+  std::string deck = "BEGIN BULK\n";
+  char line[96];
+  for (int n = 0; n < 9; ++n) {
+    std::snprintf(line, sizeof line, "GRID    %8d        %8.1f%8.1f%8.1f\n", n + 1, double(n % 3),
+                  double(n / 3), 0.0);
+    deck += line;
+  }
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const int a = 1 + i + 3 * j;
+      std::snprintf(line, sizeof line, "CQUAD4  %8d       1%8d%8d%8d%8d\n", 1 + i + 2 * j, a, a + 1,
+                    a + 4, a + 3);
+      deck += line;
+    }
+  return deck + cards +
+         "PSHELL         1       1     1.0\nMAT1           1  2.1+5            .3\nENDDATA\n";
+}
+
+/// The new mesh of that plate: cells x cells quads over [0, 2] x [0, 2] in part `part` (point
+/// (i, j): index i + (cells + 1) j; face (i, j): index i + cells j).
+QuadMesh plateMesh(int cells, Id part) {
+  QuadMesh mesh;
+  mesh.part = part;
+  for (int j = 0; j <= cells; ++j)
+    for (int i = 0; i <= cells; ++i) mesh.points.push_back({2.0 * i / cells, 2.0 * j / cells, 0.0});
+  for (int j = 0; j < cells; ++j)
+    for (int i = 0; i < cells; ++i) {
+      const CornerIndex a = CornerIndex(i + (cells + 1) * j), row = CornerIndex(cells + 1);
+      mesh.faces.push_back({a, a + 1, a + row + 1, a + row});
+    }
+  return mesh;
+}
+
 std::map<Id, std::array<double, 3>> nodesById(const FeModel& model) {
   std::map<Id, std::array<double, 3>> nodes;
   for (const Node& node : model.nodes) nodes[node.id] = node.xyz;
@@ -184,15 +220,7 @@ TEST(DeckAssembly, NodeSetsAndInitialVelocitiesCoverTheSameRegionOfTheNewMesh) {
   const auto dir = scratchDir("assembly_regions");
   writeText(dir / "in.k", deck);
   FeModel model = readDeck(dir / "in.k");
-  QuadMesh mesh;
-  mesh.part = 1;
-  for (int j = 0; j <= 3; ++j)
-    for (int i = 0; i <= 3; ++i) mesh.points.push_back({2.0 * i / 3, 2.0 * j / 3, 0.0});
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i) {
-      const CornerIndex a = CornerIndex(i + 4 * j);
-      mesh.faces.push_back({a, a + 1, a + 5, a + 4});
-    }
+  const QuadMesh mesh = plateMesh(3, 1);
   const AssemblyReport report = replacePartMeshes(model, {mesh});
   EXPECT_EQ(report.removedNodes, 9u);
   EXPECT_TRUE(report.unmapped.empty());
@@ -361,37 +389,14 @@ TEST(DeckAssembly, NastranSetAndSpcListsCoverTheSameRegionOfTheNewMesh) {
   // A 2 x 2 plate of unit quads remeshed as 3 x 3 quads of side 2/3: the SET1 of all 9 grids (on
   // a continuation line) must list the 16 new grids, the free-format SPC1 of the side x = 0 the
   // 4 new grids on that side.
-  std::string deck = "BEGIN BULK\n";
-  char line[96];
-  for (int n = 0; n < 9; ++n) {
-    std::snprintf(line, sizeof line, "GRID    %8d        %8.1f%8.1f%8.1f\n", n + 1, double(n % 3),
-                  double(n / 3), 0.0);
-    deck += line;
-  }
-  for (int j = 0; j < 2; ++j)
-    for (int i = 0; i < 2; ++i) {
-      const int a = 1 + i + 3 * j;
-      std::snprintf(line, sizeof line, "CQUAD4  %8d       1%8d%8d%8d%8d\n", 1 + i + 2 * j, a, a + 1,
-                    a + 4, a + 3);
-      deck += line;
-    }
-  deck +=
+  const std::string deck = nastranPlateDeck(
       "SET1          77       1       2       3       4       5       6       7\n"
       "               8       9\n"
-      "SPC1,88,123,1,4,7\n"
-      "PSHELL         1       1     1.0\nMAT1           1  2.1+5            .3\nENDDATA\n";
+      "SPC1,88,123,1,4,7\n");
   const auto dir = scratchDir("assembly_nastran_regions");
   writeText(dir / "in.bdf", deck);
   FeModel model = readDeck(dir / "in.bdf");
-  QuadMesh mesh;
-  mesh.part = 1;
-  for (int j = 0; j <= 3; ++j)
-    for (int i = 0; i <= 3; ++i) mesh.points.push_back({2.0 * i / 3, 2.0 * j / 3, 0.0});
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i) {
-      const CornerIndex a = CornerIndex(i + 4 * j);
-      mesh.faces.push_back({a, a + 1, a + 5, a + 4});
-    }
+  const QuadMesh mesh = plateMesh(3, 1);
   const AssemblyReport report = replacePartMeshes(model, {mesh});
   EXPECT_EQ(report.removedNodes, 9u);
   EXPECT_TRUE(report.unmapped.empty());
@@ -441,37 +446,14 @@ TEST(DeckAssembly, PressureLoadsOnRemovedShellsGoToTheNewShellsOnThem) {
   // A 2 x 2 plate of unit quads (shells 1..4) remeshed as 4 x 4 quads of side 1/2. PLOAD4 of 5.0
   // on shell 1 and of 7.0 (with a continuation line) on shell 4: each new shell whose centroid
   // lies on shell 1 or 4 gets that card with its own ID, and no card names a removed shell.
-  std::string deck = "BEGIN BULK\n";
-  char line[96];
-  for (int n = 0; n < 9; ++n) {
-    std::snprintf(line, sizeof line, "GRID    %8d        %8.1f%8.1f%8.1f\n", n + 1, double(n % 3),
-                  double(n / 3), 0.0);
-    deck += line;
-  }
-  for (int j = 0; j < 2; ++j)
-    for (int i = 0; i < 2; ++i) {
-      const int a = 1 + i + 3 * j;
-      std::snprintf(line, sizeof line, "CQUAD4  %8d       1%8d%8d%8d%8d\n", 1 + i + 2 * j, a, a + 1,
-                    a + 4, a + 3);
-      deck += line;
-    }
-  deck +=
+  const std::string deck = nastranPlateDeck(
       "PLOAD4         9       1     5.0\n"
       "PLOAD4         9       4     7.0                                        +\n"
-      "+              0      0.      0.     -1.\n"
-      "PSHELL         1       1     1.0\nMAT1           1  2.1+5            .3\nENDDATA\n";
+      "+              0      0.      0.     -1.\n");
   const auto dir = scratchDir("assembly_nastran_loads");
   writeText(dir / "in.bdf", deck);
   FeModel model = readDeck(dir / "in.bdf");
-  QuadMesh mesh;
-  mesh.part = 1;
-  for (int j = 0; j <= 4; ++j)
-    for (int i = 0; i <= 4; ++i) mesh.points.push_back({0.5 * i, 0.5 * j, 0.0});
-  for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i) {
-      const CornerIndex a = CornerIndex(i + 5 * j);
-      mesh.faces.push_back({a, a + 1, a + 6, a + 5});
-    }
+  const QuadMesh mesh = plateMesh(4, 1);
   const AssemblyReport report = replacePartMeshes(model, {mesh});
   EXPECT_EQ(report.elementLoadsRewritten, 2u);
   EXPECT_TRUE(report.unmapped.empty()) << "an element ID is no node reference";
@@ -571,15 +553,7 @@ TEST(DeckAssembly, AbaqusNodeSetsCoverTheSameRegionWithoutEmptyEntries) {
   writeText(dir / "in.inp", deck);
   for (const int cells : {3, 1}) {
     FeModel model = readDeck(dir / "in.inp");
-    QuadMesh mesh;
-    mesh.part = model.parts[0].id;
-    for (int j = 0; j <= cells; ++j)
-      for (int i = 0; i <= cells; ++i) mesh.points.push_back({2.0 * i / cells, 2.0 * j / cells, 0});
-    for (int j = 0; j < cells; ++j)
-      for (int i = 0; i < cells; ++i) {
-        const CornerIndex a = CornerIndex(i + (cells + 1) * j);
-        mesh.faces.push_back({a, a + 1, a + CornerIndex(cells) + 2, a + CornerIndex(cells) + 1});
-      }
+    const QuadMesh mesh = plateMesh(cells, model.parts[0].id);
     replacePartMeshes(model, {mesh});
     writeDeck(model, dir / "out.inp");
     const std::string out = readText(dir / "out.inp");

@@ -94,11 +94,7 @@ class CardScanner {
       return;
     }
     nastran::CardFields fields;
-    try {
-      fields.start(&name_, card.lines[0].first, card.lines[0].second);
-      for (std::size_t i = 1; i < card.lines.size(); ++i)
-        fields.addContinuation(card.lines[i].first, card.lines[i].second);
-    } catch (const InputError&) {
+    if (!readFields(card, fields)) {
       for (std::size_t i = 0; i < card.lines.size(); ++i)
         sink_.scanSuspects(withoutComment(card.lines[i].second), card.lines[i].first,
                            i == 0 ? 2 : 1, card.name);
@@ -132,6 +128,18 @@ class CardScanner {
   }
 
  private:
+  /// The fields of a card, its continuation lines included; false when they cannot be read.
+  bool readFields(const Card& card, nastran::CardFields& fields) const {
+    try {
+      fields.start(&name_, card.lines[0].first, card.lines[0].second);
+      for (std::size_t i = 1; i < card.lines.size(); ++i)
+        fields.addContinuation(card.lines[i].first, card.lines[i].second);
+      return true;
+    } catch (const InputError&) {
+      return false;
+    }
+  }
+
   static std::string_view withoutComment(std::string_view line) {
     const std::size_t dollar = line.find('$');
     return dollar == std::string_view::npos ? line : line.substr(0, dollar);
@@ -171,13 +179,7 @@ class CardScanner {
   void scanLoads(const Card& card) {
     if (card.name != "PLOAD4") return;
     nastran::CardFields fields;
-    try {
-      fields.start(&name_, card.lines[0].first, card.lines[0].second);
-      for (std::size_t i = 1; i < card.lines.size(); ++i)
-        fields.addContinuation(card.lines[i].first, card.lines[i].second);
-    } catch (const InputError&) {
-      return;
-    }
+    if (!readFields(card, fields)) return;
     std::int64_t element = 0;
     if (io::iequals(fields[6], "THRU") || !integerField(fields[1], element) ||
         !sink_.watched.count(element))
