@@ -8,7 +8,6 @@
 #include <string>
 #include <unordered_map>
 
-#include "assembly/nearest_point.h"
 #include "geometry/vec3.h"
 #include "io/text_scan.h"
 #include "voxremesh/reference_surface.h"
@@ -17,9 +16,25 @@ namespace voxremesh::assembly {
 
 using namespace geom;  // NOLINT: the vector operators
 
-std::vector<NewNodeSite> locateNewNodes(const FeModel& model, const std::vector<QuadMesh>& meshes,
-                                        const std::vector<std::vector<Id>>& pointIds, Id firstNew) {
-  std::vector<NewNodeSite> sites;
+namespace {
+
+/// The old shells of a part as a surface to search, with the shell of each of its faces.
+struct OldPartSurface {
+  std::vector<const Shell*> shells;
+  ReferenceSurface surface;
+};
+
+OldPartSurface oldPartSurface(const FeModel& model, Id part) {
+  OldPartSurface old{{}, ReferenceSurface(quadMeshFromModel(model, part))};
+  for (const Shell& shell : model.shells)
+    if (shell.part == part) old.shells.push_back(&shell);
+  return old;
+}
+
+}  // namespace
+
+NewNodeSites::NewNodeSites(const FeModel& model, const std::vector<QuadMesh>& meshes,
+                           const std::vector<std::vector<Id>>& pointIds, Id firstNew) {
   std::unordered_set<Id> located;
   const std::unordered_map<Id, std::size_t> nodeIndex = model.nodeIndex();
   for (std::size_t m = 0; m < meshes.size(); ++m) {
@@ -32,29 +47,30 @@ std::vector<NewNodeSite> locateNewNodes(const FeModel& model, const std::vector<
       ids.push_back(id);
     }
     if (queries.empty()) continue;
-    const Id part = meshes[m].part;
-    std::vector<const Shell*> shells;
-    for (const Shell& shell : model.shells)
-      if (shell.part == part) shells.push_back(&shell);
-    const ReferenceSurface surface(quadMeshFromModel(model, part));
-    if (surface.empty()) continue;
-    const std::vector<SurfaceHit> hits = surface.closestPoints(queries);
+    const OldPartSurface old = oldPartSurface(model, meshes[m].part);
+    if (old.surface.empty()) continue;
+    const std::vector<SurfaceHit> hits = old.surface.closestPoints(queries);
     for (std::size_t q = 0; q < queries.size(); ++q) {
       NewNodeSite site;
       site.node = ids[q];
-      site.part = part;
+      site.part = meshes[m].part;
       site.xyz = queries[q];
       site.onOld = hits[q].point;
-      const Shell& shell = *shells[hits[q].face];
+      const Shell& shell = *old.shells[hits[q].face];
       site.cornerCount = shell.nodeCount;
       for (int c = 0; c < shell.nodeCount; ++c) {
         site.corners[std::size_t(c)] = shell.nodes[std::size_t(c)];
         site.cornerXyz[std::size_t(c)] = model.nodes[nodeIndex.at(shell.nodes[std::size_t(c)])].xyz;
       }
-      sites.push_back(site);
+      sites_.push_back(site);
+      points_.push_back(site.xyz);
     }
   }
-  return sites;
+  search_.emplace(points_);
+}
+
+const NewNodeSite& NewNodeSites::nearest(const std::array<double, 3>& p, double& distance) const {
+  return sites_[search_->nearest(p, &distance)];
 }
 
 std::vector<RegionMember> hostShells(const FeModel& model, const std::vector<QuadMesh>& meshes,
@@ -70,17 +86,15 @@ std::vector<RegionMember> hostShells(const FeModel& model, const std::vector<Qua
       for (int c = 0; c < n; ++c) sum = sum + mesh.points[face[std::size_t(c)]];
       centroids.push_back(sum * (1.0 / n));
     }
-    std::vector<Id> oldIds;
-    for (const Shell& shell : model.shells)
-      if (shell.part == mesh.part) oldIds.push_back(shell.id);
-    const ReferenceSurface surface(quadMeshFromModel(model, mesh.part));
-    if (surface.empty() || centroids.empty()) {
+    const OldPartSurface old = oldPartSurface(model, mesh.part);
+    if (old.surface.empty() || centroids.empty()) {
       next += Id(mesh.faces.size());
       continue;
     }
-    const std::vector<SurfaceHit> hits = surface.closestPoints(centroids);
+    const std::vector<SurfaceHit> hits = old.surface.closestPoints(centroids);
     for (std::size_t f = 0; f < hits.size(); ++f)
-      hosts.push_back(RegionMember{next++, oldIds[hits[f].face], hits[f].distance, mesh.part});
+      hosts.push_back(
+          RegionMember{next++, old.shells[hits[f].face]->id, hits[f].distance, mesh.part});
   }
   return hosts;
 }
@@ -159,13 +173,13 @@ std::vector<Id> isolatedMembers(const std::vector<Shell>& oldShells,
 
 }  // namespace
 
-std::vector<RegionMember> regionMembers(const std::vector<NewNodeSite>& sites,
+std::vector<RegionMember> regionMembers(const NewNodeSites& sites,
                                         const std::unordered_set<Id>& members, const FeModel& model,
+                                        const std::unordered_map<Id, std::size_t>& nodeIndex,
                                         const std::vector<Shell>& oldShells,
                                         const std::unordered_set<Id>& removed) {
   std::map<Id, RegionMember> joined;
-  const std::unordered_map<Id, std::size_t> nodeIndex = model.nodeIndex();
-  for (const NewNodeSite& site : sites) {
+  for (const NewNodeSite& site : sites.sites()) {
     const Id source = siteSource(site, members);
     if (source == 0) continue;
     joined[site.node] =
@@ -181,18 +195,12 @@ std::vector<RegionMember> regionMembers(const std::vector<NewNodeSite>& sites,
       if (removed.count(node)) isolated.push_back(node);
     std::sort(isolated.begin(), isolated.end());
   }
-  if (!isolated.empty() && !sites.empty()) {
-    std::vector<Vec3> points;
-    points.reserve(sites.size());
-    for (const NewNodeSite& site : sites) points.push_back(site.xyz);
-    const NearestPoint search(points);
+  if (!sites.sites().empty())
     for (const Id node : isolated) {
       double distance = 0;
-      const NewNodeSite& site =
-          sites[search.nearest(model.nodes[nodeIndex.at(node)].xyz, &distance)];
+      const NewNodeSite& site = sites.nearest(model.nodes[nodeIndex.at(node)].xyz, distance);
       joined.emplace(site.node, RegionMember{site.node, node, distance, site.part});
     }
-  }
   std::vector<RegionMember> result;
   result.reserve(joined.size());
   for (const auto& entry : joined) result.push_back(entry.second);

@@ -5,10 +5,13 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <string_view>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
+#include "assembly/nearest_point.h"
 #include "assembly/node_references.h"
 #include "voxremesh/fe_model.h"
 #include "voxremesh/quad_mesh.h"
@@ -26,14 +29,29 @@ struct NewNodeSite {
   int cornerCount = 0;
 };
 
-/// Locates the new nodes of the remeshed parts on their parts' old shells.
-/// @param model     the deck before its shells are replaced
-/// @param meshes    the new meshes, one per part
-/// @param pointIds  per mesh, the node ID of each point
-/// @param firstNew  the lowest new node ID: points with a lower ID are old nodes, not located
-/// Deterministic: a node made by two meshes is located once, on the first mesh's part.
-std::vector<NewNodeSite> locateNewNodes(const FeModel& model, const std::vector<QuadMesh>& meshes,
-                                        const std::vector<std::vector<Id>>& pointIds, Id firstNew);
+/// The new nodes of the remeshed parts, located on their parts' old shells, with a search for
+/// the nearest of them. Deterministic: a node made by two meshes is located once, on the first
+/// mesh's part.
+class NewNodeSites {
+ public:
+  /// @param model     the deck before its shells are replaced
+  /// @param meshes    the new meshes, one per part
+  /// @param pointIds  per mesh, the node ID of each point
+  /// @param firstNew  the lowest new node ID: points with a lower ID are old nodes, not located
+  NewNodeSites(const FeModel& model, const std::vector<QuadMesh>& meshes,
+               const std::vector<std::vector<Id>>& pointIds, Id firstNew);
+  NewNodeSites(const NewNodeSites&) = delete;
+  NewNodeSites& operator=(const NewNodeSites&) = delete;
+
+  const std::vector<NewNodeSite>& sites() const { return sites_; }
+  /// The site nearest to p and its distance. Precondition: !sites().empty().
+  const NewNodeSite& nearest(const std::array<double, 3>& p, double& distance) const;
+
+ private:
+  std::vector<NewNodeSite> sites_;
+  std::vector<std::array<double, 3>> points_;  ///< of the sites, for the search
+  std::optional<NearestPoint> search_;         ///< over points_
+};
 
 /// A new node that joins a region, and the old member whose data it takes.
 struct RegionMember {
@@ -48,10 +66,12 @@ struct RegionMember {
 /// two ends are members, or on a member corner; its source is the nearest of those members.
 /// A removed member on no such shell or edge (an isolated point of the list) gives the nearest
 /// new node. Sorted by node ID, each node once.
+/// @param nodeIndex  the model's index of node IDs (FeModel::nodeIndex)
 /// @param oldShells  the old shells of the remeshed parts (to find the isolated members)
 /// @param removed    the members that are no nodes of the new deck
-std::vector<RegionMember> regionMembers(const std::vector<NewNodeSite>& sites,
+std::vector<RegionMember> regionMembers(const NewNodeSites& sites,
                                         const std::unordered_set<Id>& members, const FeModel& model,
+                                        const std::unordered_map<Id, std::size_t>& nodeIndex,
                                         const std::vector<Shell>& oldShells,
                                         const std::unordered_set<Id>& removed);
 

@@ -272,8 +272,7 @@ AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& ne
                                       bestId, bestPart, bestDistance});
   }
   if (!regions.empty()) {
-    const std::vector<assembly::NewNodeSite> sites =
-        assembly::locateNewNodes(model, newParts, pointIds, maxNode + 1);
+    const assembly::NewNodeSites sites(model, newParts, pointIds, maxNode + 1);
     for (const auto& [key, group] : regions) {
       std::unordered_set<Id> members;
       std::unordered_map<Id, const assembly::NodeReference*> referenceOf;
@@ -282,7 +281,7 @@ AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& ne
         referenceOf.emplace(reference->node, reference);
       }
       const std::vector<assembly::RegionMember> added =
-          assembly::regionMembers(sites, members, model, oldShells, oldNodes);
+          assembly::regionMembers(sites, members, model, nodeIndex, oldShells, oldNodes);
       const std::size_t b = std::get<0>(key);
       DeckBlock& block = model.blocks[b];
       for (assembly::TextEdit& edit : assembly::regionEdits(block.text, group, added, oldNodes))
