@@ -133,9 +133,12 @@ class HeldShells {
 
   /// Gives the shells of `plan` listed in `shells` (indices into deck.shells) a held part ID.
   void hold(const PartPlan& plan, const std::vector<std::size_t>& shells) {
-    Id held = 1;
-    for (const Shell& shell : deck_.shells) held = std::max(held, shell.part + 1);
-    for (const Part& part : deck_.parts) held = std::max(held, part.id + 1);
+    if (next_ == 0) {  // the first held ID: above every part ID of the deck
+      next_ = 1;
+      for (const Shell& shell : deck_.shells) next_ = std::max(next_, shell.part + 1);
+      for (const Part& part : deck_.parts) next_ = std::max(next_, part.id + 1);
+    }
+    const Id held = next_++;
     partOfHeld_[held] = plan.part;
     for (const std::size_t s : shells) deck_.shells[s].part = held;
   }
@@ -153,6 +156,7 @@ class HeldShells {
  private:
   FeModel& deck_;
   std::unordered_map<Id, Id> partOfHeld_;  ///< held part ID -> the part the shells belong to
+  Id next_ = 0;                            ///< the next held part ID (0: not counted yet)
 };
 
 /// Per plan, the nodes of its part's shells that other keywords use as points (hardPointNodes).
