@@ -78,6 +78,19 @@ bool integerField(std::string_view text, std::int64_t& value) {
   return !text.empty() && io::parseInt(text, value);
 }
 
+/// The fields of a card, its continuation lines included; false when they cannot be read.
+bool readFields(const Card& card, nastran::CardFields& fields) {
+  static const std::string kName = "deck";
+  try {
+    fields.start(&kName, card.lines[0].first, card.lines[0].second);
+    for (std::size_t i = 1; i < card.lines.size(); ++i)
+      fields.addContinuation(card.lines[i].first, card.lines[i].second);
+    return true;
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
 class CardScanner {
  public:
   explicit CardScanner(const ReferenceSink& sink) : sink_(sink) {}
@@ -128,18 +141,6 @@ class CardScanner {
   }
 
  private:
-  /// The fields of a card, its continuation lines included; false when they cannot be read.
-  bool readFields(const Card& card, nastran::CardFields& fields) const {
-    try {
-      fields.start(&name_, card.lines[0].first, card.lines[0].second);
-      for (std::size_t i = 1; i < card.lines.size(); ++i)
-        fields.addContinuation(card.lines[i].first, card.lines[i].second);
-      return true;
-    } catch (const InputError&) {
-      return false;
-    }
-  }
-
   static std::string_view withoutComment(std::string_view line) {
     const std::size_t dollar = line.find('$');
     return dollar == std::string_view::npos ? line : line.substr(0, dollar);
@@ -235,7 +236,6 @@ class CardScanner {
   }
 
   const ReferenceSink& sink_;
-  const std::string name_ = "deck";
 };
 
 /// Calls `visit(card)` for each card of a run of bulk data lines.
@@ -275,6 +275,26 @@ void scanNastranBlock(std::string_view text, const ReferenceSink& sink) {
 void scanNastranLoads(std::string_view text, const ReferenceSink& sink) {
   CardScanner scanner(sink);
   forEachCard(text, [&](const Card& card) { scanner.scanLoads(card); });
+}
+
+void scanNastranPressures(std::string_view text, std::size_t block,
+                          std::vector<ElementPressure>& out) {
+  forEachCard(text, [&](const Card& card) {
+    if (card.name != "PLOAD4") return;
+    nastran::CardFields fields;
+    ElementPressure load;
+    load.block = block;
+    load.line = card.lines[0].first;
+    std::int64_t last = 0;
+    if (!readFields(card, fields) || !integerField(fields[1], load.first) ||
+        !io::parseReal(fields[2], load.pressure[0]))
+      return;
+    for (std::size_t k = 1; k < 4; ++k)
+      if (!io::parseReal(fields[2 + k], load.pressure[k], load.pressure[0])) return;
+    load.last = load.first;
+    if (io::iequals(fields[6], "THRU") && integerField(fields[7], last)) load.last = last;
+    out.push_back(load);
+  });
 }
 
 Id nastranMaxElementId(std::string_view text) {

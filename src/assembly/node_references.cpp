@@ -43,6 +43,17 @@ std::vector<NodeReference> findElementReferences(const FeModel& model,
   return references;
 }
 
+std::vector<ElementPressure> findElementPressures(const FeModel& model) {
+  std::vector<ElementPressure> pressures;
+  if (model.sourceFormat != DeckFormat::Nastran) return pressures;
+  for (std::size_t b = 0; b < model.blocks.size(); ++b) {
+    const DeckBlock& block = model.blocks[b];
+    if (block.kind == DeckBlock::Kind::Verbatim && !block.text.empty())
+      scanNastranPressures(block.text, b, pressures);
+  }
+  return pressures;
+}
+
 Id maxVerbatimElementId(const FeModel& model) {
   Id largest = 0;
   for (const DeckBlock& block : model.blocks) {

@@ -3,7 +3,9 @@
 // keywords understood and the scan of the others). Internal to src/assembly.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <unordered_set>
 #include <vector>
@@ -67,6 +69,19 @@ std::vector<NodeReference> findNodeReferences(const FeModel& model,
 /// left as it is). Deterministic, in block order and text order.
 std::vector<NodeReference> findElementReferences(const FeModel& model,
                                                  const std::unordered_set<Id>& watched);
+
+/// A pressure on shell elements (a Nastran PLOAD4 card): the elements first..last (one element
+/// without THRU) and the pressures at their corners (a blank P2..P4 is P1).
+struct ElementPressure {
+  std::int64_t first = 0, last = 0;
+  std::array<double, 4> pressure{};
+  std::size_t block = 0;  ///< index into FeModel::blocks
+  std::size_t line = 0;   ///< 1-based line of the card within the block
+};
+
+/// The pressures the verbatim blocks of a Nastran model put on elements (PLOAD4 cards that can be
+/// read field by field), in block and text order; none for other formats.
+std::vector<ElementPressure> findElementPressures(const FeModel& model);
 
 /// The largest element ID named by the verbatim element keywords of the model (first field of
 /// the data lines of LS-DYNA *ELEMENT_..., Nastran element and rigid element cards, Abaqus

@@ -40,6 +40,9 @@ void scanLsDynaBlock(std::string_view text, io::lsdyna::CardFormat deckFormat,
                      const ReferenceSink& sink);
 /// Scans one run of Nastran bulk data lines.
 void scanNastranBlock(std::string_view text, const ReferenceSink& sink);
+/// Appends the PLOAD4 cards of one run of Nastran bulk data lines (block `block`) to `out`.
+void scanNastranPressures(std::string_view text, std::size_t block,
+                          std::vector<ElementPressure>& out);
 /// Scans one run of Nastran bulk data lines for loads on watched elements (PLOAD4).
 void scanNastranLoads(std::string_view text, const ReferenceSink& sink);
 /// Scans one run of Abaqus input lines.

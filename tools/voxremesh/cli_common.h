@@ -49,6 +49,8 @@ int runBatchCommand(const std::vector<std::string>& args);
 int runChain(const std::vector<std::string>& args);
 /// `voxremesh quality` (cli_quality.cpp).
 int runQuality(const std::vector<std::string>& args);
+/// `voxremesh compare` (cli_compare.cpp).
+int runCompare(const std::vector<std::string>& args);
 
 /// A malformed command line (unknown option, missing argument, ...): main prints the message and
 /// the command's usage line on stderr and exits with 2.

@@ -35,6 +35,8 @@ constexpr Command kCommands[] = {
      voxremesh::cli::runBatchCommand},
     {"quality", "FE quality criteria of a deck's shells: table, JSON, .vtu",
      voxremesh::cli::runQuality},
+    {"compare", "what a remeshed deck kept and lost: areas, seams, hard points, sets, loads",
+     voxremesh::cli::runCompare},
 };
 
 const char* const kUsage = "voxremesh COMMAND [options]  (see voxremesh --help)";
@@ -53,7 +55,8 @@ void printHelp() {
       "  voxremesh --version      the version\n"
       "  voxremesh -read IN -voxelize -write OUT.vdb ...   an action chain (voxremesh -help)\n\n"
       "exit codes: 0 success, 1 error (bad input, failed write), 2 malformed command line,\n"
-      "3 done but short of the goal (remesh: parts kept unchanged; quality: the mesh fails)\n");
+      "3 done but short of the goal (remesh: parts kept unchanged; quality: the mesh fails;\n"
+      "compare: something was lost)\n");
 }
 
 const Command* findCommand(const std::string& name) {
