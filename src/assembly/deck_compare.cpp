@@ -217,12 +217,14 @@ std::map<std::pair<std::string, Id>, std::pair<std::size_t, std::size_t>> record
   for (const Shell& shell : model.shells)
     nodesOfPart[shell.part].insert(shell.nodes.begin(), shell.nodes.begin() + shell.nodeCount);
   std::map<std::pair<std::string, Id>, std::pair<std::size_t, std::size_t>> coverage;
-  for (const auto& [keyword, nodes] : recorded)
+  for (const auto& entry : recorded) {
+    const std::unordered_set<Id>& withRecord = entry.second;
     for (const auto& [part, partNodes] : nodesOfPart) {
       const std::size_t covered = static_cast<std::size_t>(std::count_if(
-          partNodes.begin(), partNodes.end(), [&](Id node) { return nodes.count(node) > 0; }));
-      coverage[{keyword, part}] = {partNodes.size(), covered};
+          partNodes.begin(), partNodes.end(), [&](Id node) { return withRecord.count(node) > 0; }));
+      coverage[{entry.first, part}] = {partNodes.size(), covered};
     }
+  }
   return coverage;
 }
 
