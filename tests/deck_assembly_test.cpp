@@ -9,10 +9,12 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "support/test_support.h"
 #include "voxremesh/deck_assembly.h"
+#include "voxremesh/deck_compare.h"
 #include "voxremesh/io.h"
 
 using namespace voxremesh;
@@ -487,6 +489,44 @@ TEST(DeckAssembly, PressureLoadsOnRemovedShellsGoToTheNewShellsOnThem) {
     found.insert(entry);
   }
   EXPECT_EQ(found, expected) << out;
+}
+
+TEST(DeckAssembly, PressuresOnShellsANewShellStraddlesAreSharedSoTheTotalForceStays) {
+  // A 2 x 2 plate of unit quads with pressures 1, 2, 3 and 4 (the last in large fields, the
+  // third in free format) remeshed as 3 x 3 quads of side 2/3: the middle row and column
+  // straddle two or four old shells. Each new shell gets one card per old shell under it, its
+  // pressure times the share of the shell on it, so that the total force (10) stays.
+  const std::string deck = nastranPlateDeck(
+      "PLOAD4         9       1     1.0\n"
+      "PLOAD4         9       2     2.0     2.0     2.0     2.0\n"
+      "PLOAD4,9,3,3.0\n"
+      "PLOAD4*                9               4             4.0\n");
+  const auto dir = scratchDir("assembly_nastran_shared_loads");
+  writeText(dir / "in.bdf", deck);
+  FeModel model = readDeck(dir / "in.bdf");
+  const FeModel before = model;
+  const AssemblyReport report = replacePartMeshes(model, {plateMesh(3, 1)});
+  EXPECT_EQ(report.elementLoadsRewritten, 4u);
+  writeDeck(model, dir / "out.bdf");
+  const DeckComparison comparison = compareDecks(before, readDeck(dir / "out.bdf"));
+  EXPECT_EQ(comparison.loadCardsBefore, 4u);
+  EXPECT_EQ(comparison.loadCardsAfter, 16u);  // 4 corner + 4 x 2 edge + 4 centre cards
+  EXPECT_NEAR(comparison.forceBefore[2], 10.0, 1e-12);
+  EXPECT_NEAR(comparison.forceAfter[2], 10.0, 1e-6) << readText(dir / "out.bdf");
+  EXPECT_TRUE(comparison.dangling.empty())
+      << formatComparisonTable(comparison) << readText(dir / "out.bdf");
+}
+
+TEST(DeckAssembly, OnlyTheGridFieldsOfANastranCardAreHardPoints) {
+  // CONM2 5 on grid 1, SPC 3 on grid 2: the element ID 5 and the set ID 3 are also grid IDs of
+  // the plate, but no grids of these cards.
+  const auto dir = scratchDir("assembly_nastran_grid_fields");
+  writeText(dir / "in.bdf", nastranPlateDeck("CONM2          5       1             1.0\n"
+                                             "SPC            3       2     123\n"));
+  const FeModel model = readDeck(dir / "in.bdf");
+  std::unordered_set<Id> all;
+  for (const Node& node : model.nodes) all.insert(node.id);
+  EXPECT_EQ(hardPointNodes(model, all), (std::unordered_set<Id>{1, 2}));
 }
 
 TEST(DeckAssembly, AbaqusNsetAndBoundary) {

@@ -58,8 +58,11 @@
 //   a region whose members are all removed, each gives its nearest new node. Each new member is
 //   a NodeRemap from that member.
 // - Loads on elements: a Nastran PLOAD4 on a removed shell is repeated, continuation lines and
-//   all, for every new shell whose centroid lies on that shell (closest), with the new shell's
-//   ID, and dropped itself (a PLOAD4 THRU range is left as it is).
+//   all, for every new shell that lies partly on that shell (16 points spread over the new shell
+//   each take the closest old shell), with the new shell's ID and its pressures times the share
+//   of the new shell on the old one, so that the total force stays; the card on the removed
+//   shell is dropped. A card whose pressures cannot be rewritten in place goes whole to the new
+//   shells mostly on its shell. A PLOAD4 THRU range is left as it is.
 // - Unmapped references: a reference that cannot be rewritten (a range such as *SET_NODE_LIST_
 //   GENERATE, SPC1 THRU or *NSET GENERATE covering an old node; a new ID wider than its fixed
 //   field; a tab-expanded Nastran field), and any integer equal to an old node ID in keywords

@@ -79,6 +79,12 @@ std::string formatComparisonTable(const DeckComparison& c) {
   }
   std::snprintf(line, sizeof line, "dangling references: %zu\n", c.dangling.size());
   out += line;
+  for (std::size_t i = 0; i < c.dangling.size() && i < 10; ++i) {
+    const DanglingReference& d = c.dangling[i];
+    std::snprintf(line, sizeof line, "  %s, line %zu of its block: %s %lld\n", d.keyword.c_str(),
+                  d.line, d.element ? "shell" : "node", static_cast<long long>(d.id));
+    out += line;
+  }
   if (c.losses.empty()) return out + "\nnothing lost\n";
   out += "\nlost:\n";
   for (const std::string& loss : c.losses) out += "  " + loss + "\n";

@@ -124,8 +124,10 @@ class CardScanner {
     }
     std::vector<std::size_t> gridFields;
     if (card.name == "PLOAD4" && io::iequals(fields[6], "THRU")) return;  // elements, no grids
-    for (const std::int8_t k : spec->fields)
-      if (k >= 0) gridFields.push_back(static_cast<std::size_t>(k));
+    for (const std::int8_t k : spec->fields) {
+      if (k < 0) break;
+      gridFields.push_back(static_cast<std::size_t>(k));
+    }
     if (spec->allFrom >= 0)
       for (std::size_t k = static_cast<std::size_t>(spec->allFrom); k < fields.size(); ++k)
         gridFields.push_back(k);
@@ -193,6 +195,17 @@ class CardScanner {
     load.group = card.lineBegins.front();
     load.recordFirst = card.lineBegins.front();
     load.recordLast = card.lineBegins.back();
+    // The pressures scale with the share of a new shell the load covers; where one cannot be
+    // rewritten in place, none is (the load then goes whole to the new shells mostly on it).
+    for (std::size_t k = 2; k <= 5; ++k) {
+      if (fields[k].empty()) continue;
+      BlockField span;
+      if (!blockField(card, fields, k, span)) {
+        load.scaledFields.clear();
+        break;
+      }
+      load.scaledFields.push_back(span);
+    }
   }
 
  private:
@@ -210,6 +223,21 @@ class CardScanner {
   }
 
   void addField(const Card& card, const nastran::CardFields& fields, std::size_t k, Id value) {
+    BlockField span;
+    if (!blockField(card, fields, k, span)) {
+      sink_.add(0, 0, 0, fields.lineOf(k), value, ReferenceKind::Range, card.name,
+                "the field is in a tab-separated line and cannot be rewritten in place");
+      return;
+    }
+    sink_.add(span.offset, span.length, span.width, fields.lineOf(k), value, ReferenceKind::Field,
+              card.name);
+  }
+
+  /// Where data field k of a card stands in the block: the whole fixed-width field (its width)
+  /// or the free-format token (width 0); false when it cannot be rewritten in place (a
+  /// tab-separated line).
+  static bool blockField(const Card& card, const nastran::CardFields& fields, std::size_t k,
+                         BlockField& span) {
     const std::size_t lineNumber = fields.lineOf(k);
     const std::string_view line = fields.lineTextOf(k);
     const std::string_view text = fields[k];
@@ -217,22 +245,18 @@ class CardScanner {
     while (index < card.lines.size() && card.lines[index].first != lineNumber) ++index;
     const bool inLine =
         text.data() >= line.data() && text.data() + text.size() <= line.data() + line.size();
-    if (!inLine || index == card.lines.size()) {
-      sink_.add(0, 0, 0, lineNumber, value, ReferenceKind::Range, card.name,
-                "the field is in a tab-separated line and cannot be rewritten in place");
-      return;
-    }
+    if (!inLine || index == card.lines.size()) return false;
     const std::size_t at = static_cast<std::size_t>(text.data() - line.data());
     const std::size_t base = card.lineBegins[index];
     if (line.find(',') != std::string_view::npos) {
-      sink_.add(base + at, text.size(), 0, lineNumber, value, ReferenceKind::Field, card.name);
-      return;
+      span = {base + at, text.size(), 0};
+      return true;
     }
     const bool large = index == 0 ? nastran::cardName(line).large : line[0] == '*';
     const std::size_t width = large ? 16 : 8;
     const std::size_t begin = 8 + (at - 8) / width * width;
-    const std::size_t end = std::min(begin + width, line.size());
-    sink_.add(base + begin, end - begin, width, lineNumber, value, ReferenceKind::Field, card.name);
+    span = {base + begin, std::min(begin + width, line.size()) - begin, width};
+    return true;
   }
 
   const ReferenceSink& sink_;

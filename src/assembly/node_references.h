@@ -29,6 +29,13 @@ enum class NodeRole {
            ///< the new nodes of the region, each taking the data of the nearest old member
 };
 
+/// Where a field stands in a block's text.
+struct BlockField {
+  std::size_t offset = 0;  ///< in the block's text
+  std::size_t length = 0;
+  std::size_t width = 0;  ///< fixed field width (0: a free-format token)
+};
+
 /// One reference to a node of the watched set in a verbatim block.
 struct NodeReference {
   std::size_t block = 0;   ///< index into FeModel::blocks
@@ -50,6 +57,9 @@ struct NodeReference {
   /// Record: offsets within the first and last line of the record (a card with continuation
   /// lines); both 0: the reference's line.
   std::size_t recordFirst = 0, recordLast = 0;
+  /// Record: fields of the record whose values scale with the share of a new element it covers
+  /// (a pressure); empty when none does, or when one cannot be rewritten in place.
+  std::vector<BlockField> scaledFields;
 };
 
 /// A replacement in a block's text: `length` characters at `offset` become `text`.

@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "geometry/vec3.h"
+#include "io/nastran_cards.h"
 #include "io/text_scan.h"
 #include "voxremesh/reference_surface.h"
 
@@ -73,28 +74,64 @@ const NewNodeSite& NewNodeSites::nearest(const std::array<double, 3>& p, double&
   return sites_[search_->nearest(p, &distance)];
 }
 
+namespace {
+
+/// 16 points spread evenly over a face: a 4 x 4 grid of cell centres in its parameters (a quad),
+/// or the centroids of its 16 triangles when cut into four along each side (a triangle).
+void facePoints(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face,
+                std::vector<Vec3>& out) {
+  const auto p = [&](int c) { return mesh.points[face[std::size_t(c)]]; };
+  if (cornerCount(face) == 4) {
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) {
+        const double u = (i + 0.5) / 4, v = (j + 0.5) / 4;
+        out.push_back(p(0) * ((1 - u) * (1 - v)) + p(1) * (u * (1 - v)) + p(2) * (u * v) +
+                      p(3) * ((1 - u) * v));
+      }
+    return;
+  }
+  for (const double offset : {1.0 / 3, 2.0 / 3})
+    for (int i = 0; i <= 3; ++i)
+      for (int j = 0; i + j <= 3; ++j) {
+        const int k = 3 - i - j - (offset > 0.5 ? 1 : 0);
+        if (k < 0) continue;
+        out.push_back(p(0) * ((i + offset) / 4) + p(1) * ((j + offset) / 4) +
+                      p(2) * ((k + offset) / 4));
+      }
+}
+
+}  // namespace
+
 std::vector<RegionMember> hostShells(const FeModel& model, const std::vector<QuadMesh>& meshes,
                                      Id firstNew) {
+  constexpr std::size_t kPoints = 16;
   std::vector<RegionMember> hosts;
   Id next = firstNew;
+  std::vector<Vec3> points;
   for (const QuadMesh& mesh : meshes) {
-    std::vector<Vec3> centroids;
-    centroids.reserve(mesh.faces.size());
-    for (const auto& face : mesh.faces) {
-      const int n = cornerCount(face);
-      Vec3 sum{0.0, 0.0, 0.0};
-      for (int c = 0; c < n; ++c) sum = sum + mesh.points[face[std::size_t(c)]];
-      centroids.push_back(sum * (1.0 / n));
-    }
     const OldPartSurface old = oldPartSurface(model, mesh.part);
-    if (old.surface.empty() || centroids.empty()) {
+    if (old.surface.empty() || mesh.faces.empty()) {
       next += Id(mesh.faces.size());
       continue;
     }
-    const std::vector<SurfaceHit> hits = old.surface.closestPoints(centroids);
-    for (std::size_t f = 0; f < hits.size(); ++f)
-      hosts.push_back(
-          RegionMember{next++, old.shells[hits[f].face]->id, hits[f].distance, mesh.part});
+    points.clear();
+    for (const auto& face : mesh.faces) facePoints(mesh, face, points);
+    const std::vector<SurfaceHit> hits = old.surface.closestPoints(points);
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f, ++next) {
+      std::map<Id, std::pair<std::size_t, double>> onShell;  // old shell -> (points, distance)
+      for (std::size_t s = f * kPoints; s < (f + 1) * kPoints; ++s) {
+        auto [it, inserted] =
+            onShell.try_emplace(old.shells[hits[s].face]->id, 0, hits[s].distance);
+        ++it->second.first;
+        it->second.second = std::min(it->second.second, hits[s].distance);
+      }
+      Id main = onShell.begin()->first;
+      for (const auto& [shell, counts] : onShell)
+        if (counts.first > onShell.at(main).first) main = shell;
+      for (const auto& [shell, counts] : onShell)
+        hosts.push_back(RegionMember{next, shell, counts.second, mesh.part,
+                                     double(counts.first) / kPoints, shell == main});
+    }
   }
   return hosts;
 }
@@ -240,6 +277,29 @@ std::string listLines(const NodeReference& like, const std::vector<Id>& ids,
   return out;
 }
 
+/// A real field's value times `factor`, in the field's width (a free-format token: shortest).
+/// A field that does not read as a real stays as it is.
+std::string scaledField(std::string_view field, std::size_t width, double factor) {
+  double value = 0.0;
+  if (!io::parseReal(field, value)) return std::string(field);
+  std::string text;
+  if (width == 0) {
+    io::appendShortest(text, value * factor);
+    return text;
+  }
+  io::nastran::appendReal(text, value * factor, static_cast<int>(width));
+  return text;
+}
+
+/// `text` with the edits (offsets into it, not overlapping) applied.
+std::string withEdits(std::string_view text, std::vector<TextEdit> edits) {
+  std::sort(edits.begin(), edits.end(),
+            [](const TextEdit& a, const TextEdit& b) { return a.offset > b.offset; });
+  std::string out(text);
+  for (const TextEdit& edit : edits) out.replace(edit.offset, edit.length, edit.text);
+  return out;
+}
+
 }  // namespace
 
 std::vector<TextEdit> regionEdits(std::string_view text,
@@ -249,8 +309,8 @@ std::vector<TextEdit> regionEdits(std::string_view text,
   std::vector<TextEdit> edits;
   if (references.empty()) return edits;
   if (references.front()->role == NodeRole::Record) {
-    std::unordered_map<Id, std::vector<Id>> newOf;  // source -> its new nodes, ascending
-    for (const RegionMember& member : added) newOf[member.source].push_back(member.node);
+    std::unordered_map<Id, std::vector<const RegionMember*>> newOf;  // source -> its members
+    for (const RegionMember& member : added) newOf[member.source].push_back(&member);
     std::set<std::pair<Id, std::size_t>> written;  // (node, group): a record repeated once
     for (const NodeReference* reference : references) {
       const bool oneLine = reference->recordFirst == 0 && reference->recordLast == 0;
@@ -264,10 +324,17 @@ std::vector<TextEdit> regionEdits(std::string_view text,
       if (!removed.count(reference->node)) out += line;
       const auto found = newOf.find(reference->node);
       if (found != newOf.end() && written.emplace(reference->node, reference->group).second)
-        for (const Id node : found->second) {
-          std::string copy(line);
-          copy.replace(at, reference->length, fieldText(*reference, node));
-          out += copy;
+        for (const RegionMember* member : found->second) {
+          const bool scaled = !reference->scaledFields.empty();
+          if (!scaled && !member->mainHost) continue;
+          std::vector<TextEdit> fields{
+              {at, reference->length, fieldText(*reference, member->node)}};
+          if (scaled && member->share != 1.0)
+            for (const BlockField& span : reference->scaledFields)
+              fields.push_back({span.offset - begin, span.length,
+                                scaledField(line.substr(span.offset - begin, span.length),
+                                            span.width, member->share)});
+          out += withEdits(line, fields);
         }
       edits.push_back(TextEdit{begin, end - begin, std::move(out)});
     }

@@ -59,6 +59,10 @@ struct RegionMember {
   Id source = 0;
   double distance = 0.0;  ///< from the new node to the source
   Id part = 0;
+  /// hostShells: the share of the new shell's area that lies on the source shell (0..1], and
+  /// whether the source is the shell most of it lies on (the lowest ID among equal shares).
+  double share = 1.0;
+  bool mainHost = true;
 };
 
 /// The new nodes that cover the region of the old nodes `members`: a new node joins when the old
@@ -76,15 +80,19 @@ std::vector<RegionMember> regionMembers(const NewNodeSites& sites,
                                         const std::unordered_set<Id>& removed);
 
 /// Per new shell (IDs from `firstNew` in mesh and face order, as replacePartMeshes numbers
-/// them), the old shell of its part its centroid lies on (the closest): `node` is the new shell's
-/// ID, `source` the old one's, `distance` between the centroid and that shell.
+/// them), the old shells of its part it lies on: 16 points spread evenly over it each take the
+/// closest old shell; per old shell one member, `node` the new shell's ID, `source` the old
+/// one's, `share` the share of the points on it, `distance` the least from a point to it. In new
+/// shell order, then ascending old shell ID.
 std::vector<RegionMember> hostShells(const FeModel& model, const std::vector<QuadMesh>& meshes,
                                      Id firstNew);
 
 /// The edits that make one block's references of one region role cover the new members: a
 /// Member list gets the new IDs in the fields of its removed members (blanked when left over)
 /// and in lines added after its last reference; a Record line is repeated for each new node whose
-/// source is its node (and dropped when that node is removed).
+/// source is its node (and dropped when that node is removed). A record with scaled fields (a
+/// pressure) is repeated for every member with its source, those fields multiplied by the
+/// member's share (so that the total load stays); one without, for the main hosts only.
 /// @param text        the block's text
 /// @param references  the block's references of that role (in text order)
 /// @param removed     the referenced nodes that are no nodes of the new deck
