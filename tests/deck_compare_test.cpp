@@ -2,6 +2,7 @@
 // small decks and a real deck remeshed end to end.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -155,4 +156,23 @@ TEST(DeckCompare, Car5RemeshedLosesNothingAndTheCliSaysSo) {
   EXPECT_TRUE(contains(compared.output, "nothing lost")) << compared.output;
   const auto json = runCli("compare " + quoted(car5) + " " + quoted(dir / "out.k") + " --json");
   EXPECT_TRUE(contains(json.output, "\"losses\": []")) << json.output;
+}
+
+TEST(DeckCompare, WingboxRemeshedAtTwiceItsSizeKeepsItsPressureForce) {
+  // Its 1,632 PLOAD4 cards each carry their own pressure; the remeshed skin's shells are about
+  // four times larger: the total force must stay within 1 %.
+  VOXREMESH_REQUIRE_SHARED_DECK(wingbox, "wingbox_stitched_together-000.bdf");
+  const auto dir = scratchDir("compare_wingbox");
+  const auto remeshed =
+      runCli("remesh " + quoted(wingbox) + " --size 6 -o " + quoted(dir / "out.bdf"));
+  ASSERT_TRUE(remeshed.exitCode == 0 || remeshed.exitCode == 3) << remeshed.output;
+  const DeckComparison comparison = compareDecks(readDeck(wingbox), readDeck(dir / "out.bdf"));
+  ASSERT_GT(comparison.loadCardsAfter, 0u);
+  const double before =
+      std::hypot(comparison.forceBefore[0], comparison.forceBefore[1], comparison.forceBefore[2]);
+  const double change = std::hypot(comparison.forceAfter[0] - comparison.forceBefore[0],
+                                   comparison.forceAfter[1] - comparison.forceBefore[1],
+                                   comparison.forceAfter[2] - comparison.forceBefore[2]);
+  EXPECT_LT(change, 0.01 * before);
+  EXPECT_TRUE(comparison.losses.empty()) << formatComparisonTable(comparison);
 }
