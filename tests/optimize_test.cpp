@@ -597,6 +597,32 @@ TEST(SplitInvertedQuads, CutsAnArrowheadAtItsReflexCorner) {
   EXPECT_EQ(square.faces, faces);
 }
 
+TEST(SplitInvertedQuads, CutsAQuadWithAFlatCorner) {
+  // A quad whose second corner lies 0.004 off the line between its neighbours (a corner of
+  // 179.5 degrees: solvers cannot estimate a shell normal there) becomes two triangles cut at
+  // that corner; with the corner 0.05 off (177 degrees) it stays.
+  for (const double offset : {0.004, 0.05}) {
+    QuadMesh mesh;
+    mesh.points = {{0, 0, 0}, {1, -offset, 0}, {2, 0, 0}, {1, 1, 0}};
+    mesh.faces = {{0, 1, 2, 3}};
+    const std::size_t split = voxremesh::splitInvertedQuads(mesh, 179.0);
+    voxremesh::QualitySettings settings;
+    settings.targetSize = 1.0;
+    const auto report = voxremesh::assessQuality(mesh, settings);
+    if (offset < 0.01) {
+      EXPECT_EQ(split, 1u);
+      ASSERT_EQ(mesh.faces.size(), 2u);
+      EXPECT_EQ(mesh.faces[0], (std::array<CornerIndex, 4>{1, 2, 3, kNoCorner}));
+      EXPECT_EQ(mesh.faces[1], (std::array<CornerIndex, 4>{3, 0, 1, kNoCorner}));
+      EXPECT_EQ(report.criteria[static_cast<int>(voxremesh::Criterion::DegenerateCorner)].failing,
+                0u);
+    } else {
+      EXPECT_EQ(split, 0u);
+      EXPECT_EQ(mesh.faces.size(), 1u);
+    }
+  }
+}
+
 TEST(RelaxMesh, EqualisesAJitteredCylinderAndStaysOnIt) {
   const int n = 10;
   QuadMesh mesh = cylinder(n, 0.35, 3);

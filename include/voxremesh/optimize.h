@@ -183,13 +183,15 @@ std::size_t splitLongEdges(QuadMesh& mesh, double maxLength, const ReferenceSurf
 /// SettingError for bad settings.
 std::size_t rotateFailingEdges(QuadMesh& mesh, const QualitySettings& settings, int maxRounds = 5);
 
-/// Inverted quads: a quad with exactly one reflex corner (det J <= 0 there, with quality.h's
-/// corner Jacobian: a negative Jacobian ratio, which solvers refuse) becomes the two triangles on
-/// either side of the diagonal from that corner, which lies inside the quad; both keep the quad's
-/// orientation. Quads folded at more than one corner are left as they are. Serial, deterministic.
+/// Inverted and flat-cornered quads: a quad with exactly one reflex corner (det J <= 0 there,
+/// with quality.h's corner Jacobian: a negative Jacobian ratio, which solvers refuse) or corner
+/// of `degenerateCornerDeg` degrees or more (where solvers cannot estimate the shell normal)
+/// becomes the two triangles on either side of the diagonal from that corner, which lies inside
+/// the quad; both keep the quad's orientation. Quads with more than one such corner are left as
+/// they are. Serial, deterministic.
 /// @return the number of quads split
 /// Throws std::invalid_argument for a bad mesh.
-std::size_t splitInvertedQuads(QuadMesh& mesh);
+std::size_t splitInvertedQuads(QuadMesh& mesh, double degenerateCornerDeg = 179.0);
 
 /// Folds cut out and filled again: the folded faces (quality.h's foldedFaces) and every face
 /// sharing a point with them form regions; a region whose outline is one simple loop, whose inner

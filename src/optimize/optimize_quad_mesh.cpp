@@ -141,7 +141,7 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
   const Clock::time_point q = Clock::now();
   if (settings.splitFailingShare > 0.0 && quality.targetSize > 0.0)
     s.failingSplit = splitFailingQuads(mesh, quality, settings.splitFailingShare);
-  s.invertedSplit = splitInvertedQuads(mesh);
+  s.invertedSplit = splitInvertedQuads(mesh, quality.degenerateCornerDeg);
   s.quadSplitSeconds = secondsSince(q);
   s.totalSeconds = secondsSince(start);
   if (stats) *stats = s;

@@ -1,4 +1,4 @@
-// splitInvertedQuads: a quad with one reflex corner becomes two triangles (optimize.h).
+// splitInvertedQuads: a quad with one reflex or flat corner becomes two triangles (optimize.h).
 #include <array>
 #include <vector>
 
@@ -9,7 +9,7 @@ namespace voxremesh {
 
 using namespace geom;  // NOLINT: the vector operators
 
-std::size_t splitInvertedQuads(QuadMesh& mesh) {
+std::size_t splitInvertedQuads(QuadMesh& mesh, double degenerateCornerDeg) {
   opt::checkMesh(mesh);
   std::vector<std::array<CornerIndex, 4>> faces;
   faces.reserve(mesh.faces.size());
@@ -28,9 +28,15 @@ std::size_t splitInvertedQuads(QuadMesh& mesh) {
       c[k] = cross(p - mesh.points[face[(k + 3) % 4]], mesh.points[face[(k + 1) % 4]] - p);
       n = n + c[k];
     }
+    // A reflex corner, or one whose interior angle is degenerateCornerDeg or more (its corner
+    // normal too small for a solver to estimate the shell normal from).
     int reflex = -1, count = 0;
-    for (std::size_t k = 0; k < 4; ++k)
-      if (dot(c[k], n) <= 0.0) reflex = int(k), ++count;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const Vec3& p = mesh.points[face[k]];
+      const double angle =
+          angleDeg(mesh.points[face[(k + 3) % 4]] - p, mesh.points[face[(k + 1) % 4]] - p);
+      if (dot(c[k], n) <= 0.0 || angle >= degenerateCornerDeg) reflex = int(k), ++count;
+    }
     if (count != 1) {  // convex, or folded beyond what one cut mends
       faces.push_back(face);
       continue;
