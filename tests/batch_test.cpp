@@ -118,6 +118,31 @@ TEST(Batch, JobFileExpansion) {
                                     "{\"jobs\": [{\"task\": \"convert\", \"input\": "
                                     "\"decks/a.k\", \"output\": \"decks/./a.k\"}]}"),
                        "would write over its input"));
+  // Writing outside the job file's folder: refused unless allowed.
+  const std::string outside =
+      "{\"jobs\": [{\"task\": \"convert\", \"input\": \"decks/a.k\",\n"
+      "  \"output\": \"../../elsewhere.obj\"}]}";
+  const std::string refusal = inputErrorOf(bad, outside);
+  EXPECT_TRUE(contains(refusal, "2: job \"a\" writes ")) << refusal;
+  EXPECT_TRUE(contains(refusal, "elsewhere.obj, outside the job file's folder")) << refusal;
+  EXPECT_FALSE(contains(refusal, "..")) << refusal;
+  writeText(bad, outside);
+  EXPECT_EQ(readBatchFile(bad, true).jobs.size(), 1u);
+  EXPECT_TRUE(contains(inputErrorOf(bad,
+                                    "{\"jobs\": [{\"task\": \"convert\", \"input\": "
+                                    "\"decks/a.k\", \"output\": \"/tmp/a.obj\"}]}"),
+                       "outside the job file's folder"));
+  EXPECT_TRUE(contains(inputErrorOf(bad,
+                                    "{\"jobs\": [{\"task\": \"chain\", \"input\": "
+                                    "\"decks/a.k\", \"output\": \"out/a.obj\", \"chain\": "
+                                    "[\"-read\", \"{input}\", \"-write\", \"/tmp/b.obj\", "
+                                    "\"-write\", \"{output}\"]}]}"),
+                       "writes /tmp/b.obj, outside"));
+  // Inside, through a folder name with "..": accepted.
+  writeText(bad,
+            "{\"jobs\": [{\"task\": \"convert\", \"input\": \"decks/a.k\", \"output\": "
+            "\"out/../out2/a.obj\"}]}");
+  EXPECT_EQ(readBatchFile(bad).jobs.size(), 1u);
 }
 
 TEST(Batch, BrokenJobsFailAloneAndShardsSplitTheWork) {

@@ -72,10 +72,15 @@ struct BatchFile {
 };
 
 /// Reads a job file (see the schema above).
+/// @param allowOutside  jobs may write outside the job file's folder (their output, or a chain's
+///                      -write target, relative to the working folder); by default such a job
+///                      refuses the file, so that a job file from elsewhere cannot overwrite files
+///                      anywhere
 /// Throws InputError naming the file and line for unreadable files, invalid JSON and structure
 /// errors (missing or unknown keys, wrong types of the structure, an empty job list, a glob that
-/// matches no file).
-BatchFile readBatchFile(const std::filesystem::path& path);
+/// matches no file, two jobs writing one file, a job writing over its input or outside the
+/// folder).
+BatchFile readBatchFile(const std::filesystem::path& path, bool allowOutside = false);
 
 /// How runBatch runs.
 struct BatchOptions {

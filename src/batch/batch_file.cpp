@@ -5,6 +5,8 @@
 #include <map>
 #include <set>
 #include <string>
+#include <system_error>
+#include <vector>
 
 #include "io/text_scan.h"
 #include "json/json.h"
@@ -20,7 +22,8 @@ using json::Json;
 
 class FileReader {
  public:
-  explicit FileReader(const fs::path& path) : path_(path), name_(path.string()) {}
+  FileReader(const fs::path& path, bool allowOutside)
+      : path_(path), name_(path.string()), allowOutside_(allowOutside) {}
 
   BatchFile read() {
     const std::string content = io::loadFile(path_);
@@ -45,7 +48,13 @@ class FileReader {
     if (!jobs) fail(root, "the job file has no \"jobs\" list");
     if (jobs->type != Json::Type::Array || jobs->items.empty())
       fail(*jobs, "\"jobs\" must be a non-empty list of job objects");
-    for (const Json& job : jobs->items) expand(job, defaults, file.jobs);
+    for (std::size_t j = 0; j < jobs->items.size(); ++j) {
+      const std::size_t first = file.jobs.size();
+      expand(jobs->items[j], defaults, file.jobs);
+      if (!allowOutside_)
+        for (std::size_t k = first; k < file.jobs.size(); ++k)
+          refuseWritingOutside(jobs->items[j], file.jobs[k]);
+    }
     refuseSharedOutputs(*jobs, file.jobs);
     return file;
   }
@@ -63,6 +72,28 @@ class FileReader {
       if (!added)
         fail(where, "jobs \"" + jobs[it->second].name + "\" and \"" + job.name + "\" both write " +
                         job.output.string());
+    }
+  }
+
+  /// Fails when a job writes outside the job file's folder: its output, or a chain's -write
+  /// target (relative to the working folder, as the chain reads it).
+  void refuseWritingOutside(const Json& where, const BatchJob& job) const {
+    if (!job.problem.empty()) return;
+    // (target, the member naming it)
+    std::vector<std::pair<fs::path, const char*>> written{{job.output, "output"}};
+    for (std::size_t i = 0; i + 1 < job.chain.size(); ++i)
+      if (job.chain[i] == "-write") written.emplace_back(job.chain[i + 1], "chain");
+    std::error_code error;
+    const fs::path folder = fs::weakly_canonical(fs::absolute(path_).parent_path(), error);
+    for (const auto& [target, member] : written) {
+      const fs::path full = fs::weakly_canonical(fs::absolute(target), error);
+      const fs::path inside = full.lexically_relative(folder);
+      if (error || inside.empty() || *inside.begin() == "..") {
+        const Json* at = where.find(member);
+        fail(at ? *at : where, "job \"" + job.name + "\" writes " + full.string() +
+                                   ", outside the job file's folder " + folder.string() +
+                                   " (voxremesh batch --allow-outside allows it)");
+      }
     }
   }
 
@@ -256,12 +287,13 @@ class FileReader {
 
   fs::path path_;
   std::string name_;
+  bool allowOutside_ = false;
 };
 
 }  // namespace
 
-BatchFile readBatchFile(const std::filesystem::path& path) {
-  return FileReader(path).read();
+BatchFile readBatchFile(const std::filesystem::path& path, bool allowOutside) {
+  return FileReader(path, allowOutside).read();
 }
 
 const char* taskName(BatchTask task) {

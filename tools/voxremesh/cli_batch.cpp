@@ -16,7 +16,7 @@ namespace {
 
 const char* const kUsage =
     "voxremesh batch JOBS.json [--threads N] [--resume] [--shard I/N] [--summary PREFIX] "
-    "[--quiet]";
+    "[--quiet] [--allow-outside]";
 
 const char* const kHelp =
     "Runs the jobs of a JSON job file in parallel within the thread budget. A job that fails\n"
@@ -39,6 +39,8 @@ const char* const kHelp =
     "  parts, or \"part\", remeshed as voxremesh remesh does), chain (actions, see voxremesh\n"
     "  -help); settings: size voxel part band feature_angle invalid_angle format;\n"
     "  output placeholders: {stem} {name} {index} {SETTING}; paths relative to the job file.\n"
+    "  Jobs write inside the job file's folder only (outputs and a chain's -write targets):\n"
+    "  a job file that writes elsewhere is refused unless --allow-outside is given.\n"
     "\n"
     "options:\n"
     "  --threads N       thread budget for all jobs (default: the file's \"threads\", else all\n"
@@ -49,7 +51,8 @@ const char* const kHelp =
     "                    --shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT with 0-based tasks\n"
     "  --summary PREFIX  where the summary goes (default: JOBS without .json plus \".summary\",\n"
     "                    and \".shardIofN\" when sharded)\n"
-    "  --quiet           no progress line (it is shown only on a terminal anyway)\n";
+    "  --quiet           no progress line (it is shown only on a terminal anyway)\n"
+    "  --allow-outside   let jobs write outside the job file's folder\n";
 
 }  // namespace
 
@@ -63,7 +66,8 @@ int runBatchCommand(const std::vector<std::string>& args) {
                                        {"--resume", false},
                                        {"--shard", true},
                                        {"--summary", true},
-                                       {"--quiet", false}},
+                                       {"--quiet", false},
+                                       {"--allow-outside", false}},
                                       1, 1, kUsage);
   BatchOptions options;
   options.resume = parsed.has("--resume");
@@ -75,7 +79,7 @@ int runBatchCommand(const std::vector<std::string>& args) {
     threads = static_cast<int>(value);
   }
   const std::filesystem::path jobFile = parsed.positional[0];
-  const BatchFile file = readBatchFile(jobFile);
+  const BatchFile file = readBatchFile(jobFile, parsed.has("--allow-outside"));
   options.threads = threads ? *threads : file.threads;
   std::filesystem::path prefix = jobFile;
   if (prefix.extension() == ".json") prefix.replace_extension();
