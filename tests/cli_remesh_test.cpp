@@ -240,7 +240,7 @@ TEST(RemeshCli, ShellsOnASolidMeshEndQuicklyWithinAnAddressSpaceLimit) {
   VOXREMESH_REQUIRE_SHARED_DECK(deck, "rot063akd2s_107.bdf");
   const fs::path dir = scratchDir("remesh_rot063");
   const test::CliResult run =
-      test::runShell("prlimit --as=2000000000 -- " + std::string(VOXREMESH_CLI) + " remesh " +
+      test::runShell(test::addressSpaceLimit(2000000000) + std::string(VOXREMESH_CLI) + " remesh " +
                      quoted(deck) + " -o " + quoted(dir / "out.bdf") + " --quiet 2>&1");
   EXPECT_EQ(run.exitCode, 3) << run.output;
   EXPECT_TRUE(contains(run.output,
@@ -256,7 +256,7 @@ TEST(RemeshCli, AnOffHeaderClaimingBillionsOfVerticesIsRefusedWithinAFewHundredM
   const fs::path dir = scratchDir("remesh_huge_off");
   test::writeText(dir / "huge.off", "OFF\n5000000000 5000000000 0\n40\n1\n");
   const test::CliResult run =
-      test::runShell("prlimit --as=300000000 -- " + std::string(VOXREMESH_CLI) + " info " +
+      test::runShell(test::addressSpaceLimit(300000000) + std::string(VOXREMESH_CLI) + " info " +
                      quoted(dir / "huge.off") + " 2>&1");
   EXPECT_EQ(run.exitCode, 1) << run.output;
   EXPECT_TRUE(contains(run.output, "huge.off:3: vertex 0 has fewer than three coordinates"))

@@ -321,8 +321,9 @@ TEST(CliVolume, DamagedLengthsInAVdbAreRefusedBeforeOpenVdbAllocatesThem) {
   for (const fs::path& file : files)
     for (const std::string& command :
          {"inspect " + quoted(file), "extract " + quoted(file) + " -o " + quoted(dir / "x.obj")}) {
-      const voxremesh::test::CliResult run = runShell(
-          "prlimit --as=600000000 -- " + std::string(VOXREMESH_CLI) + " " + command + " 2>&1");
+      const voxremesh::test::CliResult run =
+          runShell(voxremesh::test::addressSpaceLimit(600000000) + std::string(VOXREMESH_CLI) +
+                   " " + command + " 2>&1");
       EXPECT_EQ(run.exitCode, 1) << command << ": " << run.output;
       EXPECT_TRUE(contains(run.output, file.string() + ": byte offset ")) << run.output;
       EXPECT_TRUE(contains(run.output, "a damaged .vdb file")) << run.output;

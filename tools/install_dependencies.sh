@@ -8,6 +8,7 @@ packages=(
   libopenvdb-dev libboost-iostreams-dev libtbb-dev libopenmesh-dev libgtest-dev zlib1g-dev
   libopenvdb-tools python3-openvdb
   calculix-ccx  # tests/calculix_modes_test.cpp runs ccx on the original and remeshed decks
+  clang libclang-rt-dev  # the sanitizer and fuzzing build (tools/ci_sanitizers.sh)
 )
 
 missing=()

@@ -67,6 +67,21 @@ std::string readText(const std::filesystem::path& path) {
   return content.str();
 }
 
+std::string addressSpaceLimit(std::size_t bytes) {
+#if defined(__SANITIZE_ADDRESS__)
+  constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+  constexpr bool kAddressSanitizer = true;
+#else
+  constexpr bool kAddressSanitizer = false;
+#endif
+#else
+  constexpr bool kAddressSanitizer = false;
+#endif
+  return kAddressSanitizer ? std::string() : "prlimit --as=" + std::to_string(bytes) + " -- ";
+}
+
 CliResult runShell(const std::string& command) {
   CliResult result;
   FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");

@@ -44,6 +44,12 @@ CliResult runShell(const std::string& command);
 /// Runs `voxremesh ARGS` (arguments are passed to /bin/sh as written) and captures its output.
 CliResult runCli(const std::string& args);
 
+/// The prefix of a shell command that runs it under an address-space limit of `bytes`
+/// ("prlimit --as=BYTES -- "), or nothing in a build with AddressSanitizer, whose shadow memory
+/// takes terabytes of address space (the limit would stop every program before it starts): the
+/// test then checks the outcome without the limit.
+std::string addressSpaceLimit(std::size_t bytes);
+
 /// Result of a CLI run with standard output and standard error kept apart.
 struct CliRun {
   int exitCode = -1;
