@@ -38,13 +38,11 @@ Positions positionsOf(const FeModel& model) {
   return positions;
 }
 
-/// Half the cross product of a shell's diagonals (a triangle's: of two sides): its area times its
-/// unit normal.
+/// A shell's area times its unit normal (half of geom::elementNormal).
 Vec areaVector(const Shell& shell, const Positions& positions) {
   const auto at = [&](int c) { return positions.at(shell.nodes[std::size_t(c)]); };
-  const Vec d1 = shell.nodeCount == 4 ? (at(2) - at(0)) : (at(1) - at(0));
-  const Vec d2 = shell.nodeCount == 4 ? (at(3) - at(1)) : (at(2) - at(0));
-  return geom::cross(d1, d2) * 0.5;
+  const bool triangle = shell.nodeCount == 3;
+  return geom::elementNormal(at(0), at(1), at(2), at(triangle ? 2 : 3), triangle) * 0.5;
 }
 
 /// Per part: shells and area.

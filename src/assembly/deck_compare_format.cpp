@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <string>
 
+#include "geometry/vec3.h"
 #include "io/text_scan.h"
 #include "json/json.h"
 #include "voxremesh/deck_compare.h"
@@ -13,7 +14,7 @@ namespace voxremesh {
 namespace {
 
 double length(const std::array<double, 3>& v) {
-  return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  return geom::norm(v);
 }
 
 /// A share in percent, or "-" without a whole.

@@ -76,8 +76,12 @@ const NewNodeSite& NewNodeSites::nearest(const std::array<double, 3>& p, double&
 
 namespace {
 
-/// 16 points spread evenly over a face: a 4 x 4 grid of cell centres in its parameters (a quad),
-/// or the centroids of its 16 triangles when cut into four along each side (a triangle).
+/// The number of points facePoints spreads over a face.
+constexpr std::size_t kFacePoints = 16;
+
+/// kFacePoints points spread evenly over a face: a 4 x 4 grid of cell centres in its parameters
+/// (a quad), or the centroids of its 16 triangles when cut into four along each side (a
+/// triangle: barycentric (i, j, k) + 1/3 with i + j + k = 3, and + 2/3 with i + j + k = 2).
 void facePoints(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face,
                 std::vector<Vec3>& out) {
   const auto p = [&](int c) { return mesh.points[face[std::size_t(c)]]; };
@@ -90,21 +94,17 @@ void facePoints(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face,
       }
     return;
   }
-  for (const double offset : {1.0 / 3, 2.0 / 3})
-    for (int i = 0; i <= 3; ++i)
-      for (int j = 0; i + j <= 3; ++j) {
-        const int k = 3 - i - j - (offset > 0.5 ? 1 : 0);
-        if (k < 0) continue;
+  for (const auto& [sum, offset] : {std::pair<int, double>{3, 1.0 / 3}, {2, 2.0 / 3}})
+    for (int i = 0; i <= sum; ++i)
+      for (int j = 0; i + j <= sum; ++j)
         out.push_back(p(0) * ((i + offset) / 4) + p(1) * ((j + offset) / 4) +
-                      p(2) * ((k + offset) / 4));
-      }
+                      p(2) * ((sum - i - j + offset) / 4));
 }
 
 }  // namespace
 
 std::vector<RegionMember> hostShells(const FeModel& model, const std::vector<QuadMesh>& meshes,
                                      Id firstNew) {
-  constexpr std::size_t kPoints = 16;
   std::vector<RegionMember> hosts;
   Id next = firstNew;
   std::vector<Vec3> points;
@@ -119,18 +119,18 @@ std::vector<RegionMember> hostShells(const FeModel& model, const std::vector<Qua
     const std::vector<SurfaceHit> hits = old.surface.closestPoints(points);
     for (std::size_t f = 0; f < mesh.faces.size(); ++f, ++next) {
       std::map<Id, std::pair<std::size_t, double>> onShell;  // old shell -> (points, distance)
-      for (std::size_t s = f * kPoints; s < (f + 1) * kPoints; ++s) {
+      for (std::size_t s = f * kFacePoints; s < (f + 1) * kFacePoints; ++s) {
         auto [it, inserted] =
             onShell.try_emplace(old.shells[hits[s].face]->id, 0, hits[s].distance);
         ++it->second.first;
         it->second.second = std::min(it->second.second, hits[s].distance);
       }
-      Id main = onShell.begin()->first;
-      for (const auto& [shell, counts] : onShell)
-        if (counts.first > onShell.at(main).first) main = shell;
+      auto main = onShell.begin();  // the most points; the lowest ID among equals
+      for (auto it = onShell.begin(); it != onShell.end(); ++it)
+        if (it->second.first > main->second.first) main = it;
       for (const auto& [shell, counts] : onShell)
         hosts.push_back(RegionMember{next, shell, counts.second, mesh.part,
-                                     double(counts.first) / kPoints, shell == main});
+                                     double(counts.first) / kFacePoints, shell == main->first});
     }
   }
   return hosts;
