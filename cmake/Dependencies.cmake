@@ -3,7 +3,9 @@ find_package(Threads REQUIRED)
 find_package(TBB REQUIRED)
 
 # Debian ships FindOpenVDB.cmake outside CMake's default module path; it needs boost-iostreams.
-list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB /usr/lib/cmake/OpenVDB)
+# The installed package config (cmake/voxremeshConfig.cmake.in) looks in the same folders.
+set(VOXREMESH_OPENVDB_MODULE_DIRS /usr/lib/x86_64-linux-gnu/cmake/OpenVDB /usr/lib/cmake/OpenVDB)
+list(APPEND CMAKE_MODULE_PATH ${VOXREMESH_OPENVDB_MODULE_DIRS})
 find_package(OpenVDB REQUIRED)
 
 # zlib (a dependency of OpenVDB anyway) compresses the PNG images of `voxremesh slice`.

@@ -20,6 +20,7 @@ if(VOXREMESH_FUZZ)
   # The non-fuzzer programs (the CLI, benchmarks) link the sanitizer runtimes, which also provide
   # the coverage callbacks the instrumented library calls.
   add_link_options(-fsanitize=address,undefined)
+  set(VOXREMESH_SANITIZER_LINK_OPTIONS -fsanitize=address,undefined)
   # voxremesh_core is defined after this include; target names are resolved at generate time.
   add_subdirectory(tests/fuzz)
 endif()

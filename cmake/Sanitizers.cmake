@@ -3,4 +3,5 @@ option(VOXREMESH_SANITIZE "Build with address and undefined-behaviour sanitizers
 if(VOXREMESH_SANITIZE)
   add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer)
   add_link_options(-fsanitize=address,undefined)
+  set(VOXREMESH_SANITIZER_LINK_OPTIONS -fsanitize=address,undefined)
 endif()
