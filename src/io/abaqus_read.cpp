@@ -23,7 +23,6 @@ namespace {
 namespace fs = std::filesystem;
 using abaqus::ElementClass;
 
-constexpr std::size_t kMaxIncludeDepth = 32;
 constexpr std::size_t kMaxFields = 24;
 
 /// One parameter of a keyword line: KEY or KEY=value (key upper case, blanks removed).
@@ -180,8 +179,8 @@ class DeckLines {
     for (const auto& frame : frames_)
       if (frame->identity == id)
         throw InputError(at.file, at.line, "*INCLUDE of '" + name + "' includes itself", at.card);
-    if (frames_.size() >= kMaxIncludeDepth)
-      throw InputError(at.file, at.line, "*INCLUDE nested deeper than 32 files", at.card);
+    if (frames_.size() >= io::kMaxIncludeDepth)
+      throw InputError(at.file, at.line, io::includeTooDeepMessage(name), at.card);
     std::string content = loadFile(target);
     if (content.find('\0') != std::string::npos) requireText(content, target);
     open(target, std::move(content));

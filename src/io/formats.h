@@ -2,6 +2,7 @@
 // Readers throw InputError naming file, line and card; writers append the file content to `out`.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 
@@ -9,6 +10,17 @@
 #include "voxremesh/io.h"
 
 namespace voxremesh::io {
+
+/// The longest chain of include files a deck reader follows (the deck itself counts as the
+/// first): each level holds its file's content and the reader's frames, so a deeper chain is
+/// refused at the include that would exceed it.
+inline constexpr std::size_t kMaxIncludeDepth = 32;
+
+/// The message for an include refused by kMaxIncludeDepth.
+inline std::string includeTooDeepMessage(const std::string& name) {
+  return "include of '" + name + "' nested deeper than " + std::to_string(kMaxIncludeDepth) +
+         " files";
+}
 
 /// LS-DYNA keyword deck (src/io/lsdyna_read.cpp, src/io/lsdyna_write.cpp).
 FeModel readLsDyna(const std::filesystem::path& path, Warnings& warnings);

@@ -441,6 +441,9 @@ class DeckReader {
   }
 
   void readInclude(SourceFile& file, LineCursor& cursor, const KeywordLine& keyword) {
+    const std::size_t keywordLine = cursor.lineNumber();
+    const std::string keywordCard(cursor.line());
+    bool included = false;
     std::string name;
     std::size_t nameLine = 0;
     std::string card;
@@ -457,11 +460,17 @@ class DeckReader {
       }
       name += line;
       includeFile(file, name, nameLine, card, keyword.suffix.value_or(file.format));
+      included = true;
       name.clear();
       card.clear();
     }
-    if (!name.empty())
+    if (!name.empty()) {
       includeFile(file, name, nameLine, card, keyword.suffix.value_or(file.format));
+      included = true;
+    }
+    // LS-DYNA requires the FILENAME card; without it the block would vanish silently.
+    if (!included)
+      throw InputError(file.name, keywordLine, "*INCLUDE without a file name", keywordCard);
   }
 
   void includeFile(const SourceFile& file, std::string name, std::size_t line,
@@ -494,6 +503,8 @@ class DeckReader {
                            "' is already being read (it includes " + file.name +
                            " directly or through other files)",
                        card);
+    if (includeStack_.size() >= io::kMaxIncludeDepth)
+      throw InputError(file.name, line, io::includeTooDeepMessage(name), card);
     warnings_.push_back("inlined *INCLUDE '" + name + "' (" + file.name + ":" +
                         std::to_string(line) +
                         "): the written deck holds its content instead of including the file");

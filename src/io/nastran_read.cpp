@@ -695,6 +695,8 @@ class Reader {
       throw InputError(file.name, line,
                        "INCLUDE of '" + name + "' makes a cycle (the file includes itself)",
                        statement);
+    if (includeStack_.size() >= io::kMaxIncludeDepth)
+      throw InputError(file.name, line, io::includeTooDeepMessage(name), statement);
     warnings_.push_back(file.name + ":" + std::to_string(line) + ": INCLUDE '" + name +
                         "' was read in place; its content is written inline, not as an INCLUDE");
 
