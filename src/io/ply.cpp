@@ -369,6 +369,12 @@ void readBinaryBody(const Header& header, const std::string& content, MeshBuilde
   const char* data = content.data();
   const std::size_t size = content.size();
   std::size_t pos = header.bodyOffset;
+  // Binary records have no line: vertex indices are checked here, where their offset is known.
+  std::int64_t vertexTotal = 0;
+  for (const Element& element : header.elements)
+    if (element.name == "vertex")  // saturating: counts come from the file
+      vertexTotal +=
+          std::min(element.count, std::numeric_limits<std::int64_t>::max() - vertexTotal);
   for (const Element& element : header.elements) {
     const bool isVertex = element.name == "vertex";
     const bool isFace = element.name == "face";
@@ -404,9 +410,16 @@ void readBinaryBody(const Header& header, const std::string& content, MeshBuilde
             corners = count;
             if (count > 4 || count < 3)
               addFace(builder, indices, count, 0, static_cast<std::size_t>(i), start, {});
-            for (std::int64_t k = 0; k < count; ++k)
-              indices[k] = readInteger(property.type,
-                                       data + pos + static_cast<std::size_t>(k) * itemSize, little);
+            for (std::int64_t k = 0; k < count; ++k) {
+              const std::size_t at = pos + static_cast<std::size_t>(k) * itemSize;
+              indices[k] = readInteger(property.type, data + at, little);
+              if (isFace && (indices[k] < 0 || indices[k] >= vertexTotal))
+                throw InputError(
+                    builder.file(), 0,
+                    "face " + std::to_string(i) + " names vertex " + std::to_string(indices[k]) +
+                        ", but the file defines only " + std::to_string(vertexTotal) +
+                        " vertices (numbered from 0; byte offset " + std::to_string(at) + ")");
+            }
           }
           pos += static_cast<std::size_t>(count) * itemSize;
           continue;
