@@ -113,6 +113,54 @@ TEST(ActionChain, ConfigFilesAndTheirErrors) {
   EXPECT_THROW(chain::parseConfig(dir / "missing.cfg"), InputError);
 }
 
+// A -config line naming a missing file, or a file already being read (a cycle), is reported at
+// that line of the including file; an error inside an included file keeps its own file and line.
+TEST(ActionChain, IncludedConfigErrorsNameTheIncludingLine) {
+  const fs::path dir = scratchDir("chain_config_include");
+  const auto includes = [](const fs::path& file) { return "config \"" + file.string() + "\"\n"; };
+  struct Caught {
+    std::string file;
+    std::size_t line = 0;
+    std::string what;
+  };
+  const auto parseError = [](const fs::path& config) {
+    try {
+      chain::parseConfig(config);
+    } catch (const InputError& error) {
+      return Caught{error.file(), error.line(), error.what()};
+    }
+    return Caught{"(accepted)", 0, ""};
+  };
+
+  writeText(dir / "main.cfg", "read a.k\n\n" + includes(dir / "no_such.cfg"));
+  const Caught missing = parseError(dir / "main.cfg");
+  EXPECT_EQ(missing.file, (dir / "main.cfg").string());
+  EXPECT_EQ(missing.line, 3u);
+  EXPECT_TRUE(contains(missing.what, (dir / "no_such.cfg").string() + ": cannot open file"))
+      << missing.what;
+
+  writeText(dir / "self.cfg", "# a cycle\n" + includes(dir / "self.cfg"));
+  const Caught self = parseError(dir / "self.cfg");
+  EXPECT_EQ(self.file, (dir / "self.cfg").string());
+  EXPECT_EQ(self.line, 2u);
+  EXPECT_TRUE(contains(self.what, "config file includes itself")) << self.what;
+
+  // a.cfg includes b.cfg, whose line 2 includes a.cfg again: reported there.
+  writeText(dir / "a.cfg", includes(dir / "b.cfg"));
+  writeText(dir / "b.cfg", "read a.k\n" + includes(dir / "a.cfg"));
+  const Caught cycle = parseError(dir / "a.cfg");
+  EXPECT_EQ(cycle.file, (dir / "b.cfg").string());
+  EXPECT_EQ(cycle.line, 2u);
+  EXPECT_TRUE(contains(cycle.what, (dir / "a.cfg").string() + ": config file includes itself"))
+      << cycle.what;
+
+  writeText(dir / "inner.cfg", "read a.k\nvoxelize size=x\n");
+  writeText(dir / "outer.cfg", includes(dir / "inner.cfg"));
+  const Caught inner = parseError(dir / "outer.cfg");
+  EXPECT_EQ(inner.file, (dir / "inner.cfg").string());
+  EXPECT_EQ(inner.line, 2u);
+}
+
 TEST(ActionChain, Help) {
   const std::string all = chain::chainHelp();
   for (const chain::ActionDef& action : chain::actions())

@@ -291,8 +291,25 @@ TEST(BatchCli, OneBrokenJobThenResume) {
   EXPECT_TRUE(contains(bad.output, "bad.json:2")) << bad.output;
   EXPECT_FALSE(fs::exists(dir / "bad.summary.csv"));
   const auto usage = runCli("batch " + quoted(dir / "jobs.json") + " --shard 3");
-  EXPECT_EQ(usage.exitCode, 1);
+  EXPECT_EQ(usage.exitCode, 2);
   EXPECT_TRUE(contains(usage.output, "--shard expects I/N")) << usage.output;
+}
+
+TEST(BatchCli, MalformedOptionValuesAreUsageErrors) {
+  const fs::path dir = scratchDir("batch_cli_usage");
+  writeText(dir / "jobs.json", mixedJobs(samplePart()));
+  const fs::path summary = dir / "jobs.summary.csv";
+  for (const char* options : {"--threads x", "--threads -1", "--threads 5000", "--threads=",
+                              "--shard 2/2", "--shard 0/0", "--shard x/2", "--summary="}) {
+    SCOPED_TRACE(options);
+    const auto run = runCli("batch " + quoted(dir / "jobs.json") + " " + options);
+    EXPECT_EQ(run.exitCode, 2) << run.output;
+    EXPECT_TRUE(contains(run.output, "usage: voxremesh batch JOBS.json")) << run.output;
+    EXPECT_FALSE(fs::exists(summary));  // refused before any job ran
+  }
+  const auto threads = runCli("batch " + quoted(dir / "jobs.json") + " --threads x");
+  EXPECT_TRUE(contains(threads.output, "--threads expects a whole number, not 'x'"))
+      << threads.output;
 }
 
 TEST(Batch, VoxelizeJobWritesOneVolumePerSheet) {

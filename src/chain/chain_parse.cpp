@@ -119,6 +119,10 @@ std::vector<Word> splitConfigLine(std::string_view line, const std::string& file
   return words;
 }
 
+/// The actions of the config file `path` (its -config lines replaced by the actions of the files
+/// they name). `configStack` holds the config files being read, to refuse a cycle. Throws
+/// InputError at a line of the file; an error about a whole included file (missing, or already
+/// being read) is located at the -config line that includes it.
 Chain parseConfigFile(const std::filesystem::path& path, std::set<std::string>& configStack) {
   const std::string name = path.string();
   std::error_code ignored;
@@ -141,6 +145,10 @@ Chain parseConfigFile(const std::filesystem::path& path, std::set<std::string>& 
       Chain line = parseWords(words, configStack);
       for (ActionCall& call : line) chain.push_back(std::move(call));
     } catch (const SettingError& error) {
+      throw InputError(name, cursor.lineNumber(), error.what(), std::string(cursor.line()));
+    } catch (const InputError& error) {
+      // An included config file as a whole (it has no line): name this file and line too.
+      if (error.line() != 0) throw;
       throw InputError(name, cursor.lineNumber(), error.what(), std::string(cursor.line()));
     }
   }

@@ -4,8 +4,6 @@
 #include <string>
 #include <vector>
 
-#include <filesystem>
-
 #include "cli_common.h"
 #include "voxremesh/batch.h"
 #include "voxremesh/progress.h"
@@ -71,13 +69,19 @@ int runBatchCommand(const std::vector<std::string>& args) {
                                       1, 1, kUsage);
   BatchOptions options;
   options.resume = parsed.has("--resume");
-  if (const auto shard = parsed.value("--shard")) parseShard(*shard, options);
   std::optional<int> threads;
-  if (const auto text = parsed.value("--threads")) {
-    const long long value = parseInteger("--threads", *text);
-    if (value < 0 || value > 4096) throw SettingError("--threads must be within 0..4096");
-    threads = static_cast<int>(value);
+  try {  // a malformed option value is a bad command line (exit 2), unlike a bad job file
+    if (const auto shard = parsed.value("--shard")) parseShard(*shard, options);
+    if (const auto text = parsed.value("--threads")) {
+      const long long value = parseInteger("--threads", *text);
+      if (value < 0 || value > 4096) throw SettingError("--threads must be within 0..4096");
+      threads = static_cast<int>(value);
+    }
+  } catch (const SettingError& error) {
+    throw UsageError(error.what(), kUsage);
   }
+  const auto summary = parsed.value("--summary");
+  if (summary && summary->empty()) throw UsageError("option --summary needs a value", kUsage);
   const std::filesystem::path jobFile = parsed.positional[0];
   const BatchFile file = readBatchFile(jobFile, parsed.has("--allow-outside"));
   options.threads = threads ? *threads : file.threads;
@@ -87,7 +91,7 @@ int runBatchCommand(const std::vector<std::string>& args) {
   if (options.shardCount > 1)
     prefixText = prefix.string() + ".shard" + std::to_string(options.shardIndex) + "of" +
                  std::to_string(options.shardCount) + ".summary";
-  if (const auto given = parsed.value("--summary")) prefixText = *given;
+  if (summary) prefixText = *summary;
 
   ProgressLine progress(stderr, ProgressLine::isTerminal(stderr) && !parsed.has("--quiet"));
   options.onJobDone = [&](const BatchResult& result, std::size_t done, std::size_t total) {
