@@ -70,6 +70,28 @@ TEST(JunctionNodes, SameNodesWhicheverWayAndWhereverTheCurveStarts) {
   EXPECT_EQ(reference.edge({0, 0, 0}, {20, 10, 0}), nullptr);
 }
 
+TEST(JunctionNodes, ACurveAlreadySpacedAsTheSamplingWouldBeKeepsItsPoints) {
+  // Points 2.5, 3.5, 4 and 3 apart: within a factor 1.5 of the spacing 3, so each is a node and
+  // no node is added.
+  VolumeCurve fits;
+  fits.points = {{0, 0, 0}, {2.5, 0, 0}, {6, 0, 0}, {10, 0, 0}, {13, 0, 0}};
+  const extract::JunctionNodes kept({fits}, 3.0, 0.2);
+  for (std::size_t i = 0; i + 1 < fits.points.size(); ++i) {
+    EXPECT_TRUE(kept.isNodePoint(fits.points[i])) << i;
+    ASSERT_NE(kept.edge(fits.points[i], fits.points[i + 1]), nullptr);
+    EXPECT_TRUE(kept.edge(fits.points[i], fits.points[i + 1])->points.empty()) << i;
+  }
+  // One segment 5 long (over 1.5 x 3): the curve is sampled evenly instead, 13 / 3 -> 4 pieces
+  // of 3.25, so the points at 2.5, 6 and 10 are not nodes.
+  VolumeCurve resampled = fits;
+  resampled.points[3] = {11, 0, 0};  // 6 -> 11 is 5 long
+  const extract::JunctionNodes sampled({resampled}, 3.0, 0.2);
+  EXPECT_FALSE(sampled.isNodePoint(resampled.points[1]));
+  EXPECT_FALSE(sampled.isNodePoint(resampled.points[2]));
+  EXPECT_TRUE(sampled.isNodePoint(resampled.points.front()));
+  EXPECT_TRUE(sampled.isNodePoint(resampled.points.back()));
+}
+
 TEST(Junctions, WheelSheetsShareTheirNodesAlongTheTJunction) {
   VOXREMESH_REQUIRE_SHARED_DECK(path, "wheel.k");
   const FeModel deck = readDeck(path);

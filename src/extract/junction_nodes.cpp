@@ -52,6 +52,9 @@ struct CurveNode {
 };
 
 /// Walks a polyline (closed: point n is point 0 again) by arc length.
+/// Segments of a curve within this factor of the spacing (either way) are kept as they are.
+constexpr double kKeptSpacingFactor = 1.5;
+
 struct Walk {
   const std::vector<Point3>& points;
   bool closed;
@@ -117,12 +120,25 @@ void addFarPoints(const Walk& walk, const CurveNode& x, const CurveNode& y, doub
   addFarPoints(walk, middle, y, tolerance, out);
 }
 
+/// True when every segment of the curve is within kKeptSpacingFactor of `spacing`: its points
+/// are then nodes as good as an even sampling's, whose pieces (round(L / spacing) of them) lie
+/// within the same factor.
+bool segmentsFitSpacing(const Walk& walk, double spacing) {
+  for (std::size_t i = 0; i + 1 < walk.arc.size(); ++i) {
+    const double length = walk.arc[i + 1] - walk.arc[i];
+    if (length < spacing / kKeptSpacingFactor || length > spacing * kKeptSpacingFactor)
+      return false;
+  }
+  return true;
+}
+
 /// The nodes of one curve in canonical order (closed: the first is not repeated).
-/// A curve that keeps its points (VolumeCurve::keepPoints) has every point as a node and no other.
+/// A curve that keeps its points (VolumeCurve::keepPoints), or whose points are already spaced
+/// as the sampling would space them (segmentsFitSpacing), has every point as a node and no other.
 std::vector<CurveNode> sampleCurve(const Walk& walk, bool keepPoints, double spacing,
                                    double tolerance) {
   const std::size_t n = walk.points.size();
-  if (keepPoints) {
+  if (keepPoints || segmentsFitSpacing(walk, spacing)) {
     std::vector<CurveNode> nodes;
     for (std::size_t i = 0; i < n; ++i) nodes.push_back({walk.arc[i], i});
     return nodes;

@@ -13,8 +13,10 @@
 //   arc length; where the chord between two nodes misses a curve point by more than `tolerance`,
 //   that point becomes a node too (farthest first, recursively, as Douglas-Peucker).
 // - A node at a curve point takes its exact coordinates.
-// - A curve that keeps its points (the seam to a part that keeps its elements) has every point as
-//   a node and no other.
+// - A curve that keeps its points (the seam to a part that keeps its elements), or whose every
+//   segment is already within a factor 1.5 of the spacing (the range of an even sampling's
+//   pieces), has every point as a node and no other: an original seam that fits the size stays
+//   as it was, and the nodes on the two sides of a narrow strip keep facing each other.
 #pragma once
 
 #include <array>
