@@ -193,32 +193,37 @@ std::size_t rotateFailingEdges(QuadMesh& mesh, const QualitySettings& settings, 
 /// Throws std::invalid_argument for a bad mesh.
 std::size_t splitInvertedQuads(QuadMesh& mesh, double degenerateCornerDeg = 179.0);
 
-/// Folds cut out and filled again: the folded faces (quality.h's foldedFaces) and every face
-/// sharing a point with them form regions; a region whose outline is one simple loop, whose inner
-/// points are all Free and whose outline projects on the plane of its unfolded faces' mean normal
-/// as a simple polygon is replaced by triangles filling that polygon (its inner points
-/// dropped) when their centroids and edge midpoints stay within half the distance limit of
-/// `original` (or as close as the region's faces were) and none is a sliver (face_score.h): a fan
-/// from the outline's centroid laid on the original where the outline is star-shaped round it,
-/// else ear clipping, triangles still too far split at their centroid; then triangle pairs are
-/// merged into quads where they pass (mergeTrianglePairs, when settings.targetSize > 0). Kept only
-/// when fewer faces are folded afterwards. Deterministic.
-/// @return the number of regions refilled
+/// Folds untangled, or cut out and filled again: the folded faces (quality.h's foldedFaces) and
+/// every face sharing a point with them form regions. A region whose outline is one simple loop
+/// and whose inner points are all Free is first untangled: grown at the reflex corners of its
+/// outline (projected on the plane of its unfolded faces' mean normal) for up to three rounds,
+/// its inner points placed by Tutte's barycentric embedding on that plane and laid on the
+/// original, its faces kept, when that leaves fewer folded faces, no sliver (face_score.h) and
+/// the faces within the distance limit of `original` (or as close as they were). Else, where the
+/// outline projects as a simple polygon, the region is replaced by triangles filling it (its
+/// inner points dropped) within the same distance and without a sliver: a fan from the outline's
+/// centroid laid on the original where the outline is star-shaped round it, else ear clipping,
+/// triangles too far split at their centroid; then triangle pairs are merged into quads where
+/// they pass (mergeTrianglePairs, when settings.targetSize > 0). The fills are kept only when
+/// fewer faces are folded afterwards. Deterministic.
+/// @return the number of regions untangled or refilled
 /// Throws std::invalid_argument for an empty surface or a bad mesh; SettingError for bad
 /// settings.
 std::size_t refillFoldedRegions(QuadMesh& mesh, const ReferenceSurface& original,
                                 const QualitySettings& settings);
 
 /// Points pulled towards the far places of the original: the points of `original` (its
-/// usedPoints, the original's nodes) farther from the mesh than 0.8 x the distance limit
-/// (settings.maxDistanceFactor x targetSize), farthest first, one per face of the mesh nearest to
-/// them, each the start of a compass search (as improveFailingElements') of a Free interior corner
-/// of that face, the nearest first. A move is taken when the original points nearest to the
-/// corner's faces lie less beyond 0.8 x the limit (summed squares), none farther than before
+/// usedPoints, the original's nodes) farther from the mesh than a share of the distance limit
+/// (settings.maxDistanceFactor x targetSize), farthest first, one per face of the mesh nearest
+/// to them, each the start of a compass search (as improveFailingElements') of a Free interior
+/// corner of that face, the nearest first. A move is taken when the original points nearest to
+/// the corner's faces lie less beyond that share (summed squares), none farther than before
 /// where beyond it, the faces fail no more criteria (as face_score counts them) and stray from
-/// `original` no more than before or than 0.8 x the limit (chordError). Points round a moved one
-/// wait for the next pass; passes repeat until none moves or `maxPasses` is reached. Serial
-/// searches, deterministic; faces do not change.
+/// `original` no more than before or than that share (chordError). Points round a moved one wait
+/// for the next pass; passes repeat until none moves or `maxPasses` is reached. The passes run
+/// with the share 0.8 (a margin under the limit), then again with 0.2: the chords across bends
+/// that make the new mesh softer than the original. Serial searches, deterministic; faces do not
+/// change.
 /// @return the number of points moved
 /// Throws std::invalid_argument for an empty surface, negative passes, settings.targetSize <= 0
 /// or a bad mesh; SettingError for bad settings.
@@ -337,7 +342,7 @@ struct OptimizeStats {
   std::size_t farPulls = 0;       ///< points pulled towards far original places
   std::size_t failingSplit = 0;   ///< failing quads split into two triangles (splitFailingQuads)
   std::size_t invertedSplit = 0;  ///< quads with a reflex corner split into two triangles (last)
-  std::size_t foldsRefilled = 0;  ///< regions round folds cut out and filled (refillFoldedRegions)
+  std::size_t foldsRefilled = 0;  ///< fold regions untangled or refilled (refillFoldedRegions)
   WarpingResult warping;
 };
 

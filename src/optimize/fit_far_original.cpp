@@ -25,9 +25,11 @@ using Face = std::array<CornerIndex, 4>;
 using opt::Vec3;
 using namespace geom;  // NOLINT: the vector operators
 
-/// Samples of the original farther from the mesh than this share of the distance limit are the
-/// ones the step works on (a margin under the limit).
+/// The step works first on the samples of the original farther from the mesh than this share of
+/// the distance limit (a margin under the limit), then on those farther than kNearShare of it:
+/// the chords across bends that make the new mesh softer than the original.
 constexpr double kFarShare = 0.8;
+constexpr double kNearShare = 0.2;
 
 /// The faces round v.
 std::vector<Face> facesAround(const QuadMesh& mesh, const opt::Topology& t, CornerIndex v) {
@@ -69,19 +71,10 @@ double excessNear(const QuadMesh& mesh, const std::vector<Face>& faces,
   return excess;
 }
 
-}  // namespace
-
-std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& original,
-                                 const QualitySettings& settings, int maxPasses) {
-  if (original.empty())
-    throw std::invalid_argument("fitFarOriginalPoints: the original surface is empty");
-  if (maxPasses < 0) throw std::invalid_argument("fitFarOriginalPoints: negative pass count");
-  if (!(settings.targetSize > 0.0))
-    throw std::invalid_argument("fitFarOriginalPoints: targetSize must be > 0");
-  checkQualitySettings(settings);
-  opt::checkMesh(mesh);
-  if (mesh.faces.empty()) return 0;
-  const double far = kFarShare * settings.maxDistanceFactor * settings.targetSize;
+/// Up to maxPasses passes of the pulls towards the samples of the original farther than `far`
+/// from the mesh (see fitFarOriginalPoints); returns the number of points pulled.
+std::size_t pullTowardsFarSamples(QuadMesh& mesh, const ReferenceSurface& original,
+                                  const QualitySettings& settings, int maxPasses, double far) {
   const std::vector<Vec3> samples = original.usedPoints();
   const opt::Topology t = opt::buildTopology(mesh);
   std::size_t pulled = 0;
@@ -201,6 +194,25 @@ std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& origina
     pulled += passPulled;
     if (passPulled == 0) break;
   }
+  return pulled;
+}
+
+}  // namespace
+
+std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& original,
+                                 const QualitySettings& settings, int maxPasses) {
+  if (original.empty())
+    throw std::invalid_argument("fitFarOriginalPoints: the original surface is empty");
+  if (maxPasses < 0) throw std::invalid_argument("fitFarOriginalPoints: negative pass count");
+  if (!(settings.targetSize > 0.0))
+    throw std::invalid_argument("fitFarOriginalPoints: targetSize must be > 0");
+  checkQualitySettings(settings);
+  opt::checkMesh(mesh);
+  if (mesh.faces.empty()) return 0;
+  const double limit = settings.maxDistanceFactor * settings.targetSize;
+  std::size_t pulled = 0;
+  for (const double share : {kFarShare, kNearShare})
+    pulled += pullTowardsFarSamples(mesh, original, settings, maxPasses, share * limit);
   return pulled;
 }
 

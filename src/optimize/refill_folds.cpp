@@ -19,6 +19,9 @@ namespace {
 
 using Face = std::array<CornerIndex, 4>;
 
+/// Rounds of growAtReflexCorners before a fold's region is untangled.
+constexpr int kGrowRounds = 3;
+
 /// The connected sets (across shared points) of the flagged faces, each ascending.
 std::vector<std::vector<std::uint32_t>> flaggedRegions(const QuadMesh& mesh, const opt::Topology& t,
                                                        const std::vector<std::uint8_t>& flagged) {
@@ -148,6 +151,147 @@ std::vector<Face> splitFarTriangles(QuadMesh& mesh, const ReferenceSurface& orig
   return result;
 }
 
+/// A basis (u, w) of the plane normal to the unit vector `normal`.
+std::pair<Vec3, Vec3> planeBasis(const Vec3& normal) {
+  const Vec3 axis = std::abs(normal[0]) < 0.9 ? Vec3{1.0, 0.0, 0.0} : Vec3{0.0, 1.0, 0.0};
+  const Vec3 u = normalized(cross(normal, axis));
+  return {u, cross(normal, u)};
+}
+
+/// Twice the signed area of the triangle (a, b, c) in the plane.
+double turn2d(const std::array<double, 2>& a, const std::array<double, 2>& b,
+              const std::array<double, 2>& c) {
+  return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+/// The region grown at the reflex corners of its outline projected on the plane normal to
+/// `normal` (unit): the faces round each such corner that is a Free point inside the surface are
+/// added, for at most `rounds` rounds, so that the outline comes closer to convex (Tutte's
+/// embedding is then fold-free). Stops early where the outline would no longer be one simple
+/// loop. Returns the grown region (ascending) and its outline in `loop`.
+std::vector<std::uint32_t> growAtReflexCorners(const QuadMesh& mesh, const opt::Topology& t,
+                                               std::vector<std::uint32_t> region,
+                                               std::vector<CornerIndex>& loop, const Vec3& normal,
+                                               int rounds) {
+  const std::pair<Vec3, Vec3> basis = planeBasis(normal);
+  const Vec3 u = basis.first, w = basis.second;
+  const auto at = [&](CornerIndex v) {
+    return std::array<double, 2>{dot(mesh.points[v], u), dot(mesh.points[v], w)};
+  };
+  for (int round = 0; round < rounds; ++round) {
+    std::vector<std::uint32_t> grown = region;
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const CornerIndex v = loop[i];
+      if (opt::roleOf(mesh, v) != PointRole::Free || t.boundary[v]) continue;
+      if (turn2d(at(loop[(i + loop.size() - 1) % loop.size()]), at(v),
+                 at(loop[(i + 1) % loop.size()])) > 0.0)
+        continue;
+      grown.insert(grown.end(), t.facesBegin(v), t.facesEnd(v));
+    }
+    std::sort(grown.begin(), grown.end());
+    grown.erase(std::unique(grown.begin(), grown.end()), grown.end());
+    if (grown.size() == region.size()) break;
+    std::vector<CornerIndex> grownLoop = outlineOf(mesh, grown);
+    if (grownLoop.empty()) break;
+    region = std::move(grown);
+    loop = std::move(grownLoop);
+  }
+  return region;
+}
+
+/// The inner points of a region (its points off the outline `loop`, all Free points inside the
+/// surface; `t` the topology of `mesh`) moved, its faces kept: on the plane normal to `normal`
+/// (unit) the outline is held where it projects and every inner point put at the mean of its edge
+/// neighbours (Tutte's barycentric embedding, by Gauss-Seidel sweeps in point order), which unfolds
+/// the region when the projected outline is convex or nearly so; then each point is laid on the
+/// original. True when, so placed, every face of the region has a positive area on the plane
+/// (turning the outline's way), the mesh has fewer folded faces than `foldsBefore`, no face is a
+/// sliver and the faces stay within `allowed` of the original (chordError); else the points are put
+/// back.
+bool untangleRegion(QuadMesh& mesh, const opt::Topology& t, const ReferenceSurface& original,
+                    const std::vector<std::uint32_t>& region, const std::vector<CornerIndex>& loop,
+                    const Vec3& normal, const QualitySettings& settings, double allowed,
+                    std::ptrdiff_t foldsBefore) {
+  std::map<CornerIndex, std::size_t> index;  // every point of the region -> its slot
+  std::vector<std::uint8_t> fixed;
+  for (const CornerIndex v : loop) index.emplace(v, index.size()), fixed.push_back(1);
+  for (const std::uint32_t f : region)
+    for (int c = 0; c < cornerCount(mesh.faces[f]); ++c)
+      if (index.emplace(mesh.faces[f][std::size_t(c)], index.size()).second) fixed.push_back(0);
+  if (index.size() == loop.size()) return false;
+  for (const auto& [v, slot] : index)
+    if (!fixed[slot] && (opt::roleOf(mesh, v) != PointRole::Free || t.boundary[v])) return false;
+  std::vector<std::vector<std::size_t>> neighbours(index.size());
+  for (const std::uint32_t f : region) {
+    const Face& face = mesh.faces[f];
+    const int n = cornerCount(face);
+    for (int c = 0; c < n; ++c) {
+      const std::size_t a = index[face[std::size_t(c)]], b = index[face[std::size_t((c + 1) % n)]];
+      neighbours[a].push_back(b);
+      neighbours[b].push_back(a);
+    }
+  }
+  const auto [u, w] = planeBasis(normal);
+  std::vector<std::array<double, 2>> xy(index.size());
+  std::vector<CornerIndex> pointOf(index.size());
+  Vec3 centre{0.0, 0.0, 0.0};
+  for (const auto& [v, slot] : index) {
+    pointOf[slot] = v;
+    xy[slot] = {dot(mesh.points[v], u), dot(mesh.points[v], w)};
+  }
+  for (const CornerIndex v : loop) centre = centre + mesh.points[v] * (1.0 / double(loop.size()));
+  double scale = 0.0;
+  for (std::size_t i = 0; i < loop.size(); ++i)
+    scale = std::max(scale, std::hypot(xy[i][0] - xy[(i + 1) % loop.size()][0],
+                                       xy[i][1] - xy[(i + 1) % loop.size()][1]));
+  for (int sweep = 0; sweep < 500; ++sweep) {
+    double moved = 0.0;
+    for (std::size_t slot = 0; slot < xy.size(); ++slot) {
+      if (fixed[slot]) continue;
+      std::array<double, 2> mean{0.0, 0.0};
+      for (const std::size_t n : neighbours[slot])
+        mean = {mean[0] + xy[n][0] / double(neighbours[slot].size()),
+                mean[1] + xy[n][1] / double(neighbours[slot].size())};
+      moved = std::max(moved, std::hypot(mean[0] - xy[slot][0], mean[1] - xy[slot][1]));
+      xy[slot] = mean;
+    }
+    if (moved < 1e-9 * scale) break;
+  }
+  for (const std::uint32_t f : region) {  // each face keeps the outline's turn on the plane
+    const Face& face = mesh.faces[f];
+    const int n = cornerCount(face);
+    double area = 0.0;
+    for (int c = 1; c + 1 < n; ++c)
+      area += turn2d(xy[index[face[0]]], xy[index[face[std::size_t(c)]]],
+                     xy[index[face[std::size_t(c + 1)]]]);
+    if (area <= 0.0) return false;
+  }
+  std::vector<std::pair<CornerIndex, Vec3>> before;
+  const double height = dot(centre, normal);
+  for (std::size_t slot = loop.size(); slot < xy.size(); ++slot) {
+    const CornerIndex v = pointOf[slot];
+    before.emplace_back(v, mesh.points[v]);
+    mesh.points[v] =
+        original.closestPoint(u * xy[slot][0] + w * xy[slot][1] + normal * height).point;
+  }
+  std::vector<Face> faces;
+  for (const std::uint32_t f : region) faces.push_back(mesh.faces[f]);
+  const std::vector<std::uint8_t> folded = foldedFaces(mesh);
+  bool good = std::count(folded.begin(), folded.end(), std::uint8_t(1)) < foldsBefore &&
+              opt::chordError(mesh, faces, original) <= allowed;
+  for (const Face& face : faces) {
+    std::array<std::array<double, 3>, 4> p{};
+    for (int c = 0; c < cornerCount(face); ++c)
+      p[std::size_t(c)] = mesh.points[face[std::size_t(c)]];
+    good =
+        good && elementQuality(p, cornerCount(face)).minLength >=
+                    opt::kDegenerateLengthFraction * settings.minLengthFactor * settings.targetSize;
+  }
+  if (!good)
+    for (const auto& [v, position] : before) mesh.points[v] = position;
+  return good;
+}
+
 }  // namespace
 
 std::size_t refillFoldedRegions(QuadMesh& mesh, const ReferenceSurface& original,
@@ -193,6 +337,23 @@ std::size_t refillFoldedRegions(QuadMesh& mesh, const ReferenceSurface& original
       }
     }
     if (!keepsFixed || norm(normal) == 0.0) continue;
+    // The region stays within the distance limit of the original, or as close as its faces
+    // were: its own faces unfolded where they can be; else it is filled anew.
+    std::vector<Face> faces;
+    for (const std::uint32_t f : region) faces.push_back(mesh.faces[f]);
+    const double allowed = std::max(settings.maxDistanceFactor * settings.targetSize,
+                                    opt::chordError(mesh, faces, original));
+    const std::vector<std::uint8_t> foldedNow = foldedFaces(mesh);
+    std::vector<CornerIndex> grownLoop = loop;
+    const std::vector<std::uint32_t> grown =
+        growAtReflexCorners(mesh, t, region, grownLoop, normalized(normal), kGrowRounds);
+    if (std::none_of(grown.begin(), grown.end(),
+                     [&](std::uint32_t f) { return removed[f] != 0; }) &&
+        untangleRegion(mesh, t, original, grown, grownLoop, normalized(normal), settings, allowed,
+                       std::count(foldedNow.begin(), foldedNow.end(), std::uint8_t(1)))) {
+      ++refilled;
+      continue;
+    }
     // A fan round the outline's centroid laid on the original follows a curved region; ear
     // clipping of the outline where the outline is not star-shaped round it.
     const std::size_t pointsOfRegion = mesh.points.size();
@@ -203,12 +364,7 @@ std::size_t refillFoldedRegions(QuadMesh& mesh, const ReferenceSurface& original
         fanFill(mesh, loop, normalized(normal), original.closestPoint(centroid).point);
     if (triangles.empty()) triangles = clipEars(mesh, loop, normalized(normal));
     if (triangles.empty()) continue;
-    // The filled region stays as close to the original as half the distance limit, or as its
-    // faces were: far triangles are split at their centroid, laid on the original.
-    std::vector<Face> faces;
-    for (const std::uint32_t f : region) faces.push_back(mesh.faces[f]);
-    const double allowed = std::max(0.5 * settings.maxDistanceFactor * settings.targetSize,
-                                    opt::chordError(mesh, faces, original));
+    // Far triangles are split at their centroid, laid on the original.
     triangles = splitFarTriangles(mesh, original, triangles, allowed);
     // No sliver (face_score.h): the fill must not trade a fold for a time step cut a hundredfold.
     bool sliver = false;
