@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <cstdio>
 #include <map>
 #include <set>
@@ -515,6 +516,138 @@ TEST(DeckAssembly, PressuresOnShellsANewShellStraddlesAreSharedSoTheTotalForceSt
   EXPECT_NEAR(comparison.forceAfter[2], 10.0, 1e-6) << readText(dir / "out.bdf");
   EXPECT_TRUE(comparison.dangling.empty())
       << formatComparisonTable(comparison) << readText(dir / "out.bdf");
+}
+
+/// The integers of the data lines of `text` after its first `skipLines` lines (comments, those
+/// starting with '$' or "**", left out), in order.
+std::vector<Id> integersAfter(const std::string& text, std::size_t skipLines) {
+  std::vector<Id> values;
+  std::size_t line = 0;
+  for (std::size_t at = 0; at < text.size();) {
+    std::size_t end = text.find('\n', at);
+    if (end == std::string::npos) end = text.size();
+    const std::string row = text.substr(at, end - at);
+    at = end + 1;
+    if (row.empty() || row[0] == '$' || row.rfind("**", 0) == 0) continue;
+    if (line++ < skipLines) continue;
+    std::string token;
+    for (const char c : row + ",") {
+      if (c == ',' || c == ' ') {
+        if (!token.empty() && token.find_first_not_of("0123456789") == std::string::npos)
+          values.push_back(std::stoll(token));
+        token.clear();
+      } else {
+        token += c;
+      }
+    }
+  }
+  return values;
+}
+
+/// The IDs of the new shells of plateMesh(4, ...) whose face (i, j) satisfies `inside`.
+std::vector<Id> newShellsWhere(Id firstNew, const std::function<bool(int, int)>& inside) {
+  std::vector<Id> ids;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i)
+      if (inside(i, j)) ids.push_back(firstNew + i + 4 * j);
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+TEST(DeckAssembly, LsDynaShellSetsAndShellLoadsCoverTheSameRegionOfTheNewMesh) {
+  // A 2 x 2 plate of unit quads (shells 1..4, shell (i, j) = 1 + i + 2 j) remeshed as 4 x 4:
+  // the set of the bottom row (shells 1 and 2) lists the 8 new shells on it, the pressure on
+  // shell 4 goes to the 4 new shells on it, and the GENERATE range cannot be rewritten.
+  std::string deck = "*KEYWORD\n*NODE\n";
+  char line[96];
+  for (int n = 0; n < 9; ++n) {
+    std::snprintf(line, sizeof line, "%8d%16.1f%16.1f%16.1f\n", n + 1, double(n % 3),
+                  double(n / 3), 0.0);
+    deck += line;
+  }
+  deck += "*ELEMENT_SHELL\n";
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const int a = 1 + i + 3 * j;
+      std::snprintf(line, sizeof line, "%8d%8d%8d%8d%8d%8d\n", 1 + i + 2 * j, 1, a, a + 1, a + 4,
+                    a + 3);
+      deck += line;
+    }
+  deck +=
+      "*SET_SHELL_LIST\n"
+      "         5\n"
+      "         1         2\n"
+      "*SET_SHELL_LIST_GENERATE\n"
+      "         6\n"
+      "         3         4\n"
+      "*LOAD_SHELL_ELEMENT\n"
+      "$#     eid      lcid        sf        at\n"
+      "         4         1       2.5       0.0\n"
+      "*END\n";
+  const auto dir = scratchDir("assembly_lsdyna_shell_sets");
+  writeText(dir / "in.k", deck);
+  FeModel model = readDeck(dir / "in.k");
+  const AssemblyReport report = replacePartMeshes(model, {plateMesh(4, 1)});
+  EXPECT_EQ(report.elementSetMembersRewritten, 2u);
+  EXPECT_EQ(report.elementLoadsRewritten, 1u);
+  ASSERT_EQ(report.unmapped.size(), 2u);  // shells 3 and 4 in the GENERATE range
+  EXPECT_EQ(report.unmapped[0].keyword, "*SET_SHELL_LIST_GENERATE");
+
+  std::vector<Id> members = integersAfter(block(model, "*SET_SHELL_LIST").text, 2);
+  std::sort(members.begin(), members.end());
+  EXPECT_EQ(members, newShellsWhere(report.firstNewElementId, [](int, int j) { return j < 2; }));
+  const std::string loads = block(model, "*LOAD_SHELL_ELEMENT").text;
+  std::vector<Id> loaded;
+  const std::vector<Id> values = integersAfter(loads, 1);  // eid, lcid per line (2.5 is no integer)
+  for (std::size_t k = 0; k < values.size(); k += 2) loaded.push_back(values[k]);
+  std::sort(loaded.begin(), loaded.end());
+  EXPECT_EQ(loaded, newShellsWhere(report.firstNewElementId,
+                                   [](int i, int j) { return i >= 2 && j >= 2; }))
+      << loads;
+  EXPECT_EQ(std::count(loads.begin(), loads.end(), '\n'), 6) << loads;  // keyword, comment, 4
+}
+
+TEST(DeckAssembly, AbaqusElementSetsAndDloadsCoverTheSameRegionOfTheNewMesh) {
+  std::string deck = "*NODE\n";
+  for (int n = 0; n < 9; ++n)
+    deck += std::to_string(n + 1) + ", " + std::to_string(n % 3) + ".0, " +
+            std::to_string(n / 3) + ".0, 0.0\n";
+  deck += "*ELEMENT, TYPE=S4, ELSET=PLATE\n";
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const int a = 1 + i + 3 * j;
+      deck += std::to_string(1 + i + 2 * j) + ", " + std::to_string(a) + ", " +
+              std::to_string(a + 1) + ", " + std::to_string(a + 4) + ", " + std::to_string(a + 3) +
+              "\n";
+    }
+  deck +=
+      "*ELSET, ELSET=LEFT\n"
+      "1, 3\n"
+      "*DLOAD\n"
+      "2, P, 0.5\n";
+  const auto dir = scratchDir("assembly_abaqus_elsets");
+  writeText(dir / "in.inp", deck);
+  FeModel model = readDeck(dir / "in.inp");
+  ASSERT_EQ(model.shells.size(), 4u);
+  const AssemblyReport report = replacePartMeshes(model, {plateMesh(4, model.shells[0].part)});
+  EXPECT_EQ(report.elementSetMembersRewritten, 2u);
+  EXPECT_EQ(report.elementLoadsRewritten, 1u);
+  EXPECT_TRUE(report.unmapped.empty());
+  writeDeck(model, dir / "out.inp");
+  const std::string out = readText(dir / "out.inp");
+  const std::size_t elset = out.find("*ELSET, ELSET=LEFT\n");
+  const std::size_t dload = out.find("*DLOAD\n");
+  ASSERT_NE(elset, std::string::npos) << out;
+  ASSERT_NE(dload, std::string::npos) << out;
+  std::vector<Id> members = integersAfter(out.substr(elset, dload - elset), 1);
+  std::sort(members.begin(), members.end());
+  EXPECT_EQ(members, newShellsWhere(report.firstNewElementId, [](int i, int) { return i < 2; }))
+      << out;
+  std::vector<Id> loaded = integersAfter(out.substr(dload), 1);
+  std::sort(loaded.begin(), loaded.end());
+  EXPECT_EQ(loaded, newShellsWhere(report.firstNewElementId,
+                                   [](int i, int j) { return i >= 2 && j < 2; }))
+      << out;
 }
 
 TEST(DeckAssembly, OnlyTheGridFieldsOfANastranCardAreHardPoints) {

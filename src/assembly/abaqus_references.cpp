@@ -1,4 +1,4 @@
-// Node references in Abaqus input lines (the keywords listed in deck_assembly.h).
+// Node and element references in Abaqus input lines (the keywords listed in deck_assembly.h).
 #include <string>
 
 #include "assembly/reference_scanners.h"
@@ -93,6 +93,38 @@ void forEachDataLine(std::string_view text, Visit visit) {
 
 }  // namespace
 
+namespace {
+
+/// Adds the references of a *NSET or *ELSET data line: a GENERATE line as a range, else each
+/// watched ID as a member of the list (new members go on lines of at most 16 after its last
+/// reference; Abaqus reads no empty entry, so a field left over repeats a member, which a set
+/// holds once).
+void addSetLine(const Keyword& keyword, std::string_view line, std::size_t number,
+                std::size_t begin, const ReferenceSink& sink) {
+  const auto fields = tokens(line);
+  if (keyword.generate) {
+    std::int64_t first = 0, last = 0, step = 1;
+    if (fields.size() >= 2 && io::parseInt(fields[0].second, first) &&
+        io::parseInt(fields[1].second, last) &&
+        (fields.size() < 3 || io::parseInt(fields[2].second, step, 1)))
+      sink.addRange(number, first, last, step, keyword.name);
+    return;
+  }
+  std::int64_t value = 0;
+  for (const auto& [at, text] : fields) {
+    if (text.empty() || !io::parseInt(text, value) || !sink.watched.count(value)) continue;
+    sink.add(begin + at, text.size(), 0, number, value, ReferenceKind::Field, keyword.name);
+    NodeReference& member = sink.references.back();
+    member.role = NodeRole::Member;
+    member.group = keyword.begin;
+    member.listLast = member.offset;
+    member.perLine = 16;
+    member.blankAllowed = false;
+  }
+}
+
+}  // namespace
+
 void scanAbaqusBlock(std::string_view text, const ReferenceSink& sink) {
   forEachDataLine(text, [&](const Keyword& keyword, std::string_view line, std::size_t number,
                             std::size_t begin, bool firstOfRecord) {
@@ -106,27 +138,7 @@ void scanAbaqusBlock(std::string_view text, const ReferenceSink& sink) {
                  ReferenceKind::Field, name);
     };
     if (name == "*NSET") {
-      if (keyword.generate) {
-        std::int64_t first = 0, last = 0, step = 1;
-        if (fields.size() >= 2 && io::parseInt(fields[0].second, first) &&
-            io::parseInt(fields[1].second, last) &&
-            (fields.size() < 3 || io::parseInt(fields[2].second, step, 1)))
-          sink.addRange(number, first, last, step, name);
-        return;
-      }
-      for (std::size_t i = 0; i < fields.size(); ++i) {
-        const std::size_t before = sink.references.size();
-        addToken(i);
-        if (sink.references.size() == before) continue;
-        // A list: new members go on lines of at most 16 after its last reference; Abaqus reads
-        // no empty entry, so a field left over repeats a member (a node set holds it once).
-        NodeReference& member = sink.references.back();
-        member.role = NodeRole::Member;
-        member.group = keyword.begin;
-        member.listLast = member.offset;
-        member.perLine = 16;
-        member.blankAllowed = false;
-      }
+      addSetLine(keyword, line, number, begin, sink);
     } else if (name == "*BOUNDARY" || name == "*CLOAD") {
       addToken(0);
     } else if (name == "*ELEMENT") {
@@ -135,6 +147,27 @@ void scanAbaqusBlock(std::string_view text, const ReferenceSink& sink) {
                name == "*KINEMATICCOUPLING") {
       sink.scanSuspects(line, number, 0, name);
     }
+  });
+}
+
+void scanAbaqusElementBlock(std::string_view text, const ReferenceSink& sink) {
+  forEachDataLine(text, [&](const Keyword& keyword, std::string_view line, std::size_t number,
+                            std::size_t begin, bool) {
+    if (keyword.name == "*ELSET") {
+      addSetLine(keyword, line, number, begin, sink);
+      return;
+    }
+    if (keyword.name != "*DLOAD") return;
+    // A line naming an element (not an element set): the record repeated for the new shells.
+    const auto fields = tokens(line);
+    std::int64_t value = 0;
+    if (fields.empty() || !io::parseInt(fields[0].second, value) || !sink.watched.count(value))
+      return;
+    sink.add(begin + fields[0].first, fields[0].second.size(), 0, number, value,
+             ReferenceKind::Field, keyword.name);
+    NodeReference& record = sink.references.back();
+    record.role = NodeRole::Record;
+    record.group = keyword.begin;
   });
 }
 

@@ -1,4 +1,4 @@
-// Node references in LS-DYNA keyword blocks (the keywords listed in deck_assembly.h).
+// Node and shell references in LS-DYNA keyword blocks (the keywords listed in deck_assembly.h).
 #include <array>
 #include <cstdint>
 
@@ -14,8 +14,8 @@ namespace lsdyna = io::lsdyna;
 using lsdyna::CardFormat;
 
 /// A keyword read field by field: cards to skip at the start of the block, then data cards with
-/// the given standard-format widths whose fields in nodeMask hold node IDs (or, for ranges,
-/// pairs of first and last IDs), and what those references mean (NodeRole).
+/// the given standard-format widths whose fields in nodeMask hold node (or element) IDs (or, for
+/// ranges, pairs of first and last IDs), and what those references mean (NodeRole).
 struct KeywordSpec {
   std::string_view name;
   std::uint8_t leadingCards;
@@ -51,6 +51,18 @@ constexpr KeywordSpec kKeywords[] = {
     {"*ELEMENT_SPH", 0, 3, {8, 8, 16}, 0x1},
 };
 
+/// Keywords read field by field whose fields name shell elements: shell sets (their members
+/// cover a region) and pressures on shells (a record repeated for the new shells).
+constexpr KeywordSpec kElementKeywords[] = {
+    {"*SET_SHELL", 1, 8, k10x8, 0xFF, false, NodeRole::Member},
+    {"*SET_SHELL_LIST", 1, 8, k10x8, 0xFF, false, NodeRole::Member},
+    {"*SET_SHELL_TITLE", 2, 8, k10x8, 0xFF, false, NodeRole::Member},
+    {"*SET_SHELL_LIST_TITLE", 2, 8, k10x8, 0xFF, false, NodeRole::Member},
+    {"*SET_SHELL_LIST_GENERATE", 1, 8, k10x8, 0xFF, true},
+    {"*SET_SHELL_LIST_GENERATE_TITLE", 2, 8, k10x8, 0xFF, true},
+    {"*LOAD_SHELL_ELEMENT", 0, 4, k10x8, 0x1, false, NodeRole::Record},
+};
+
 /// Keywords not read field by field whose data may still name nodes: element, constraint,
 /// boundary, load, initial-condition, node-set and history keywords and any keyword with "_NODE"
 /// in its name, except those whose option says they name sets, parts or contacts instead (a
@@ -75,8 +87,9 @@ bool mayNameNodes(std::string_view name) {
   return name.find("_NODE") != std::string_view::npos;
 }
 
-const KeywordSpec* findSpec(std::string_view name) {
-  for (const KeywordSpec& spec : kKeywords)
+template <std::size_t N>
+const KeywordSpec* findSpec(const KeywordSpec (&table)[N], std::string_view name) {
+  for (const KeywordSpec& spec : table)
     if (spec.name == name) return &spec;
   return nullptr;
 }
@@ -165,50 +178,70 @@ lsdyna::CardFormat lsDynaDeckFormat(const FeModel& model) {
   return CardFormat::Standard;
 }
 
-void scanLsDynaBlock(std::string_view text, CardFormat deckFormat, const ReferenceSink& sink) {
-  io::LineCursor cursor(text);
-  if (!cursor.next() || !lsdyna::isKeywordLine(cursor.line())) return;  // a preamble
-  const lsdyna::KeywordLine keyword = lsdyna::parseKeywordLine(cursor.line());
-  const KeywordSpec* spec = findSpec(keyword.name);
-  if (!spec) {
-    if (!mayNameNodes(keyword.name)) return;
-    const bool element = keyword.name.compare(0, 9, "*ELEMENT_") == 0;
-    while (cursor.next()) {
-      const std::string_view line = cursor.line();
-      if (lsdyna::isCommentLine(line) || lsdyna::isKeywordLine(line)) continue;
-      // The first field of an element card is the element's own ID.
-      sink.scanSuspects(line, cursor.lineNumber(), element ? 1 : 0, keyword.name);
-    }
-    return;
-  }
-  const lsdyna::Layout layout = layoutOf(*spec, keyword.suffix.value_or(deckFormat));
+namespace {
+
+/// Reads the data cards of a keyword read field by field (its spec), after its keyword line at
+/// `cursor`, adding a reference for each watched ID in its ID fields.
+void scanSpecCards(io::LineCursor& cursor, const lsdyna::KeywordLine& keyword,
+                   const KeywordSpec& spec, CardFormat deckFormat, const ReferenceSink& sink) {
+  const lsdyna::Layout layout = layoutOf(spec, keyword.suffix.value_or(deckFormat));
   std::size_t card = 0;
   while (cursor.next()) {
     const std::string_view line = cursor.line();
     if (lsdyna::isCommentLine(line) || lsdyna::isKeywordLine(line)) continue;
-    if (card++ < spec->leadingCards) continue;
+    if (card++ < spec.leadingCards) continue;
     if (io::trim(line).empty()) continue;
-    const auto spans = splitLine(line, layout, spec->nodeMask);
+    const auto spans = splitLine(line, layout, spec.nodeMask);
     std::array<std::int64_t, lsdyna::kMaxFields> values{};
     for (std::size_t i = 0; i < layout.count; ++i)
       if (!io::parseInt(spans[i].text, values[i])) values[i] = 0;
-    if (spec->ranges) {
+    if (spec.ranges) {
       for (std::size_t i = 0; i + 1 < layout.count; i += 2)
         if (values[i] != 0)
           sink.addRange(cursor.lineNumber(), values[i], values[i + 1], 1, keyword.name);
       continue;
     }
     for (std::size_t i = 0; i < layout.count; ++i) {
-      if (!(spec->nodeMask >> i & 1u) || values[i] == 0 || !sink.watched.count(values[i])) continue;
+      if (!(spec.nodeMask >> i & 1u) || values[i] == 0 || !sink.watched.count(values[i])) continue;
       const FieldSpan& span = spans[i];
       sink.add(cursor.begin() + span.begin, span.end - span.begin, span.width, cursor.lineNumber(),
                values[i], ReferenceKind::Field, keyword.name);
       NodeReference& added = sink.references.back();
-      added.role = spec->role;
+      added.role = spec.role;
       added.listLast = added.offset;
       added.perLine = layout.count;
     }
   }
+}
+
+}  // namespace
+
+void scanLsDynaBlock(std::string_view text, CardFormat deckFormat, const ReferenceSink& sink) {
+  io::LineCursor cursor(text);
+  if (!cursor.next() || !lsdyna::isKeywordLine(cursor.line())) return;  // a preamble
+  const lsdyna::KeywordLine keyword = lsdyna::parseKeywordLine(cursor.line());
+  if (const KeywordSpec* spec = findSpec(kKeywords, keyword.name)) {
+    scanSpecCards(cursor, keyword, *spec, deckFormat, sink);
+    return;
+  }
+  // Keywords read for their shell IDs name no nodes.
+  if (findSpec(kElementKeywords, keyword.name) || !mayNameNodes(keyword.name)) return;
+  const bool element = keyword.name.compare(0, 9, "*ELEMENT_") == 0;
+  while (cursor.next()) {
+    const std::string_view line = cursor.line();
+    if (lsdyna::isCommentLine(line) || lsdyna::isKeywordLine(line)) continue;
+    // The first field of an element card is the element's own ID.
+    sink.scanSuspects(line, cursor.lineNumber(), element ? 1 : 0, keyword.name);
+  }
+}
+
+void scanLsDynaElementBlock(std::string_view text, CardFormat deckFormat,
+                            const ReferenceSink& sink) {
+  io::LineCursor cursor(text);
+  if (!cursor.next() || !lsdyna::isKeywordLine(cursor.line())) return;
+  const lsdyna::KeywordLine keyword = lsdyna::parseKeywordLine(cursor.line());
+  if (const KeywordSpec* spec = findSpec(kElementKeywords, keyword.name))
+    scanSpecCards(cursor, keyword, *spec, deckFormat, sink);
 }
 
 Id lsDynaMaxElementId(std::string_view text) {

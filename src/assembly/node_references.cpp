@@ -34,11 +34,24 @@ std::vector<NodeReference> findNodeReferences(const FeModel& model,
 std::vector<NodeReference> findElementReferences(const FeModel& model,
                                                  const std::unordered_set<Id>& watched) {
   std::vector<NodeReference> references;
-  if (watched.empty() || model.sourceFormat != DeckFormat::Nastran) return references;
+  if (watched.empty()) return references;
   for (std::size_t b = 0; b < model.blocks.size(); ++b) {
     const DeckBlock& block = model.blocks[b];
     if (block.kind != DeckBlock::Kind::Verbatim || block.text.empty()) continue;
-    scanNastranLoads(block.text, ReferenceSink{b, watched, references});
+    const ReferenceSink sink{b, watched, references};
+    switch (model.sourceFormat) {
+      case DeckFormat::LsDyna:
+        scanLsDynaElementBlock(block.text, lsDynaDeckFormat(model), sink);
+        break;
+      case DeckFormat::Nastran:
+        scanNastranLoads(block.text, sink);
+        break;
+      case DeckFormat::Abaqus:
+        scanAbaqusElementBlock(block.text, sink);
+        break;
+      default:
+        break;
+    }
   }
   return references;
 }
@@ -117,7 +130,7 @@ void ReferenceSink::addRange(std::size_t line, Id first, Id last, Id step,
   for (const Id id : covered)
     add(0, 0, 0, line, id, ReferenceKind::Range, keyword,
         "the range " + std::to_string(first) + ".." + std::to_string(last) +
-            " covers a removed node and cannot be rewritten node by node");
+            " covers a removed ID and cannot be rewritten ID by ID");
 }
 
 void ReferenceSink::scanSuspects(std::string_view line, std::size_t lineInBlock,

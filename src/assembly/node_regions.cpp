@@ -302,6 +302,22 @@ std::string withEdits(std::string_view text, std::vector<TextEdit> edits) {
 
 }  // namespace
 
+std::vector<RegionMember> shellSetMembers(const std::vector<RegionMember>& hosts,
+                                          const std::vector<const NodeReference*>& references) {
+  std::unordered_set<Id> members;
+  for (const NodeReference* reference : references) members.insert(reference->node);
+  std::vector<RegionMember> joined;
+  for (const RegionMember& host : hosts)
+    if (host.mainHost && members.count(host.source)) joined.push_back(host);
+  std::sort(joined.begin(), joined.end(),
+            [](const RegionMember& a, const RegionMember& b) { return a.node < b.node; });
+  joined.erase(
+      std::unique(joined.begin(), joined.end(),
+                  [](const RegionMember& a, const RegionMember& b) { return a.node == b.node; }),
+      joined.end());
+  return joined;
+}
+
 std::vector<TextEdit> regionEdits(std::string_view text,
                                   const std::vector<const NodeReference*>& references,
                                   const std::vector<RegionMember>& added,

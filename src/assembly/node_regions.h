@@ -87,6 +87,12 @@ std::vector<RegionMember> regionMembers(const NewNodeSites& sites,
 std::vector<RegionMember> hostShells(const FeModel& model, const std::vector<QuadMesh>& meshes,
                                      Id firstNew);
 
+/// The new shells that join a shell set: those whose main host (hostShells) is a member of the
+/// set named by `references` (one list's Member references), each once, sorted by ID, with that
+/// member as source.
+std::vector<RegionMember> shellSetMembers(const std::vector<RegionMember>& hosts,
+                                          const std::vector<const NodeReference*>& references);
+
 /// The edits that make one block's references of one region role cover the new members: a
 /// Member list gets the new IDs in the fields of its removed members (blanked when left over)
 /// and in lines added after its last reference; a Record line is repeated for each new node whose

@@ -38,6 +38,10 @@ io::lsdyna::CardFormat lsDynaDeckFormat(const FeModel& model);
 /// Scans one LS-DYNA keyword block.
 void scanLsDynaBlock(std::string_view text, io::lsdyna::CardFormat deckFormat,
                      const ReferenceSink& sink);
+/// Scans one LS-DYNA keyword block for references to watched shells: shell sets (*SET_SHELL...,
+/// members; GENERATE ranges) and *LOAD_SHELL_ELEMENT (records).
+void scanLsDynaElementBlock(std::string_view text, io::lsdyna::CardFormat deckFormat,
+                            const ReferenceSink& sink);
 /// Scans one run of Nastran bulk data lines.
 void scanNastranBlock(std::string_view text, const ReferenceSink& sink);
 /// Appends the PLOAD4 cards of one run of Nastran bulk data lines (block `block`) to `out`.
@@ -47,6 +51,9 @@ void scanNastranPressures(std::string_view text, std::size_t block,
 void scanNastranLoads(std::string_view text, const ReferenceSink& sink);
 /// Scans one run of Abaqus input lines.
 void scanAbaqusBlock(std::string_view text, const ReferenceSink& sink);
+/// Scans one run of Abaqus input lines for references to watched shells: *ELSET lists
+/// (members; GENERATE ranges) and *DLOAD lines naming an element (records).
+void scanAbaqusElementBlock(std::string_view text, const ReferenceSink& sink);
 
 /// Largest element ID of the element keywords in one block of each format (0 when none).
 Id lsDynaMaxElementId(std::string_view text);

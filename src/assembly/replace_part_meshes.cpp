@@ -295,21 +295,45 @@ AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& ne
       }
     }
   }
-  // Loads on removed shells: each new shell takes those of the old shell its centroid lies on.
+  // References to removed shells: sets list the new shells most of whose area lies on their
+  // members; per-shell records (loads) are repeated for the new shells on their shell.
   std::unordered_set<Id> oldShellIds;
   for (const Shell& shell : oldShells) oldShellIds.insert(shell.id);
-  const std::vector<assembly::NodeReference> loads =
+  const std::vector<assembly::NodeReference> shellReferences =
       assembly::findElementReferences(model, oldShellIds);
-  if (!loads.empty()) {
+  if (!shellReferences.empty()) {
     const std::vector<assembly::RegionMember> hosts =
         assembly::hostShells(model, newParts, maxElement + 1);
-    std::map<std::size_t, std::vector<const assembly::NodeReference*>> loadsOfBlock;
-    for (const assembly::NodeReference& load : loads) loadsOfBlock[load.block].push_back(&load);
-    for (const auto& [b, group] : loadsOfBlock)
+    std::map<std::tuple<std::size_t, std::size_t, int>,
+             std::vector<const assembly::NodeReference*>>
+        shellRegions;  // by block, card or keyword in it, role
+    for (const assembly::NodeReference& reference : shellReferences) {
+      if (reference.kind != assembly::ReferenceKind::Field) {
+        const DeckBlock& block = model.blocks[reference.block];
+        const bool located = block.line > 0;
+        report.unmapped.push_back(UnmappedReference{
+            reference.keyword, block.file,
+            located ? block.line + reference.line - 1 : reference.line, !located, reference.node,
+            "shell " + std::to_string(reference.node) + ": " + reference.reason});
+        continue;
+      }
+      shellRegions[{reference.block, reference.group, static_cast<int>(reference.role)}].push_back(
+          &reference);
+    }
+    for (const auto& [key, group] : shellRegions) {
+      const std::size_t b = std::get<0>(key);
+      const std::vector<assembly::RegionMember> added =
+          group.front()->role == assembly::NodeRole::Record
+              ? hosts
+              : assembly::shellSetMembers(hosts, group);
       for (assembly::TextEdit& edit :
-           assembly::regionEdits(model.blocks[b].text, group, hosts, oldShellIds))
+           assembly::regionEdits(model.blocks[b].text, group, added, oldShellIds))
         edits[b].push_back(std::move(edit));
-    report.elementLoadsRewritten = loads.size();
+      if (group.front()->role == assembly::NodeRole::Record)
+        report.elementLoadsRewritten += group.size();
+      else
+        report.elementSetMembersRewritten += group.size();
+    }
   }
   // Apply the edits of each block from its end, so that earlier offsets stay valid.
   for (std::size_t b = 0; b < edits.size(); ++b) {

@@ -411,10 +411,12 @@ std::string remeshReportJson(const RemeshReport& report) {
   std::snprintf(buffer, sizeof buffer,
                 "\n  ],\n  \"t_junction_edges_in\": %zu,\n  \"t_junction_edges_out\": %zu,\n"
                 "  \"removed_nodes\": %zu,\n  \"new_nodes\": %zu,\n  \"hard_points_kept\": %zu,\n"
-                "  \"element_loads_rewritten\": %zu,\n  \"seconds\": %.6f\n}\n",
+                "  \"element_loads_rewritten\": %zu,\n  \"element_set_members_rewritten\": %zu,\n"
+                "  \"seconds\": %.6f\n}\n",
                 report.seamsBefore.tJunctionEdges, report.seamsAfter.tJunctionEdges,
                 assembly.removedNodes, assembly.newNodes, assembly.hardPointsKept,
-                assembly.elementLoadsRewritten, report.totalSeconds);
+                assembly.elementLoadsRewritten, assembly.elementSetMembersRewritten,
+                report.totalSeconds);
   return out + buffer;
 }
 
