@@ -195,16 +195,16 @@ std::size_t splitInvertedQuads(QuadMesh& mesh, double degenerateCornerDeg = 179.
 
 /// Folds untangled, or cut out and filled again: the folded faces (quality.h's foldedFaces) and
 /// every face sharing a point with them form regions. A region whose outline is one simple loop
-/// and whose inner points are all Free is first untangled: grown at the reflex corners of its
-/// outline (projected on the plane of its unfolded faces' mean normal) for up to three rounds,
-/// its inner points placed by Tutte's barycentric embedding on that plane and laid on the
-/// original, its faces kept, when that leaves fewer folded faces, no sliver (face_score.h) and
-/// the faces within the distance limit of `original` (or as close as they were). Else, where the
-/// outline projects as a simple polygon, the region is replaced by triangles filling it (its
-/// inner points dropped) within the same distance and without a sliver: a fan from the outline's
-/// centroid laid on the original where the outline is star-shaped round it, else ear clipping,
-/// triangles too far split at their centroid; then triangle pairs are merged into quads where
-/// they pass (mergeTrianglePairs, when settings.targetSize > 0). The fills are kept only when
+/// is first untangled: grown at the reflex corners of its outline (projected on the plane of its
+/// unfolded faces' mean normal) for up to three rounds, its Free inner points placed by Tutte's
+/// barycentric embedding on that plane (points on curves held) and laid on the original, its
+/// faces kept, when that leaves fewer folded faces, no sliver (face_score.h) and the faces within
+/// the distance limit of `original` (or as close as they were). Else, where its inner points are
+/// all Free and the outline projects as a simple polygon, the region is replaced by triangles
+/// filling it (its inner points dropped) within the same distance and without a sliver: a fan from
+/// the outline's centroid laid on the original where the outline is star-shaped round it, else ear
+/// clipping, triangles too far split at their centroid; then triangle pairs are merged into quads
+/// where they pass (mergeTrianglePairs, when settings.targetSize > 0). The fills are kept only when
 /// fewer faces are folded afterwards. Deterministic.
 /// @return the number of regions untangled or refilled
 /// Throws std::invalid_argument for an empty surface or a bad mesh; SettingError for bad

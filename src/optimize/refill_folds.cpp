@@ -199,15 +199,15 @@ std::vector<std::uint32_t> growAtReflexCorners(const QuadMesh& mesh, const opt::
   return region;
 }
 
-/// The inner points of a region (its points off the outline `loop`, all Free points inside the
-/// surface; `t` the topology of `mesh`) moved, its faces kept: on the plane normal to `normal`
-/// (unit) the outline is held where it projects and every inner point put at the mean of its edge
-/// neighbours (Tutte's barycentric embedding, by Gauss-Seidel sweeps in point order), which unfolds
-/// the region when the projected outline is convex or nearly so; then each point is laid on the
-/// original. True when, so placed, every face of the region has a positive area on the plane
-/// (turning the outline's way), the mesh has fewer folded faces than `foldsBefore`, no face is a
-/// sliver and the faces stay within `allowed` of the original (chordError); else the points are put
-/// back.
+/// The Free inner points of a region (its points off the outline `loop` and inside the surface;
+/// `t` the topology of `mesh`) moved, its faces kept: on the plane normal to `normal` (unit) the
+/// outline and the inner points on curves are held where they project and every other inner
+/// point put at the mean of its edge neighbours (Tutte's barycentric embedding, by Gauss-Seidel
+/// sweeps in point order), which unfolds the region when the projected outline is convex or
+/// nearly so; then each moved point is laid on the original. True when, so placed, every face
+/// of the region has a positive area on the plane (turning the outline's way), the mesh has
+/// fewer folded faces than `foldsBefore`, no face is a sliver and the faces stay within
+/// `allowed` of the original (chordError); else the points are put back.
 bool untangleRegion(QuadMesh& mesh, const opt::Topology& t, const ReferenceSurface& original,
                     const std::vector<std::uint32_t>& region, const std::vector<CornerIndex>& loop,
                     const Vec3& normal, const QualitySettings& settings, double allowed,
@@ -219,8 +219,8 @@ bool untangleRegion(QuadMesh& mesh, const opt::Topology& t, const ReferenceSurfa
     for (int c = 0; c < cornerCount(mesh.faces[f]); ++c)
       if (index.emplace(mesh.faces[f][std::size_t(c)], index.size()).second) fixed.push_back(0);
   if (index.size() == loop.size()) return false;
-  for (const auto& [v, slot] : index)
-    if (!fixed[slot] && (opt::roleOf(mesh, v) != PointRole::Free || t.boundary[v])) return false;
+  for (const auto& [v, slot] : index)  // points on curves or the boundary stay where they are
+    if (opt::roleOf(mesh, v) != PointRole::Free || t.boundary[v]) fixed[slot] = 1;
   std::vector<std::vector<std::size_t>> neighbours(index.size());
   for (const std::uint32_t f : region) {
     const Face& face = mesh.faces[f];
@@ -268,7 +268,8 @@ bool untangleRegion(QuadMesh& mesh, const opt::Topology& t, const ReferenceSurfa
   }
   std::vector<std::pair<CornerIndex, Vec3>> before;
   const double height = dot(centre, normal);
-  for (std::size_t slot = loop.size(); slot < xy.size(); ++slot) {
+  for (std::size_t slot = 0; slot < xy.size(); ++slot) {
+    if (fixed[slot]) continue;
     const CornerIndex v = pointOf[slot];
     before.emplace_back(v, mesh.points[v]);
     mesh.points[v] =
@@ -336,7 +337,7 @@ std::size_t refillFoldedRegions(QuadMesh& mesh, const ReferenceSurface& original
         if (!onLoop[v] && role != PointRole::Free) keepsFixed = false;
       }
     }
-    if (!keepsFixed || norm(normal) == 0.0) continue;
+    if (norm(normal) == 0.0) continue;
     // The region stays within the distance limit of the original, or as close as its faces
     // were: its own faces unfolded where they can be; else it is filled anew.
     std::vector<Face> faces;
@@ -354,6 +355,7 @@ std::size_t refillFoldedRegions(QuadMesh& mesh, const ReferenceSurface& original
       ++refilled;
       continue;
     }
+    if (!keepsFixed) continue;  // a fill would drop the fixed points inside
     // A fan round the outline's centroid laid on the original follows a curved region; ear
     // clipping of the outline where the outline is not star-shaped round it.
     const std::size_t pointsOfRegion = mesh.points.size();
