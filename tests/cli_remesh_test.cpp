@@ -216,9 +216,6 @@ TEST(RemeshCli, BadInputEndsWithAMessageAndNoOutput) {
       runCli("remesh " + quoted(sample) + " -o " + quoted(dir / "a.k") + " --parts 5");
   EXPECT_EQ(noPart.exitCode, 1);
   EXPECT_TRUE(contains(noPart.output, "no part 5")) << noPart.output;
-  const auto badSize =
-      runCli("remesh " + quoted(sample) + " -o " + quoted(dir / "a.k") + " --size abc");
-  EXPECT_EQ(badSize.exitCode, 1);
   const auto badExt = runCli("remesh " + quoted(sample) + " -o " + quoted(dir / "a.xyz"));
   EXPECT_EQ(badExt.exitCode, 1);
   const auto missing = runCli("remesh " + quoted(dir / "none.k") + " -o " + quoted(dir / "a.k"));
@@ -231,6 +228,71 @@ TEST(RemeshCli, BadInputEndsWithAMessageAndNoOutput) {
                                " --report " + quoted(dir / "missing" / "r.json"));
   EXPECT_EQ(noReport.exitCode, 1) << noReport.output;
   EXPECT_FALSE(fs::exists(dir / "a.k"));
+}
+
+TEST(RemeshCli, MalformedOptionValuesAreUsageErrors) {
+  // A value that is not a number of the right kind, or lies outside its range, is a malformed
+  // command line: exit 2 with the usage line, before the deck is read, and no output.
+  const fs::path dir = scratchDir("remesh_cli_usage");
+  const fs::path sample = samplePart();
+  for (const char* options : {"--size x",
+                              "--size -1",
+                              "--size nan",
+                              "--size inf",
+                              "--size 1e999",
+                              "--size=",
+                              "--part-size x",
+                              "--part-size 1",
+                              "--part-size 1=x",
+                              "--part-size 1=0",
+                              "--part-size 1=-2",
+                              "--part-size x=2",
+                              "--part-size 0=2",
+                              "--part-size 1=2,",
+                              "--parts x",
+                              "--parts 1,,2",
+                              "--parts 1.5",
+                              "--parts 0",
+                              "--parts -3",
+                              "--parts 99999999999999999999",
+                              "--parts=",
+                              "--feature-angle x",
+                              "--feature-angle 400",
+                              "--feature-angle -5",
+                              "--feature-angle nan",
+                              "--retries x",
+                              "--retries -1",
+                              "--retries 9",
+                              "--retries 1.5",
+                              "--retries=",
+                              "--threads x",
+                              "--threads -1",
+                              "--threads 5000",
+                              "--threads 2.5",
+                              "--threads="}) {
+    SCOPED_TRACE(options);
+    const auto run = runCli("remesh " + quoted(sample) + " -o " + quoted(dir / "out.k") +
+                            " --report " + quoted(dir / "r.json") + " " + options);
+    EXPECT_EQ(run.exitCode, 2) << run.output;
+    EXPECT_TRUE(contains(run.output, "usage: voxremesh remesh IN -o OUT")) << run.output;
+    EXPECT_FALSE(fs::exists(dir / "out.k"));
+    EXPECT_FALSE(fs::exists(dir / "r.json"));
+  }
+  // Refused before the deck is read: a missing deck is not reached.
+  for (const auto& [options, message] :
+       {std::pair<const char*, const char*>{"--threads x",
+                                            "--threads expects a whole number, not 'x'"},
+        {"--retries 9", "--retries must be within 0..8, not 9"},
+        {"--size abc", "--size expects a number, not 'abc'"},
+        {"--part-size 1=0", "--part-size: the size of part 1 must be positive, not 0"},
+        {"--parts 0", "--parts expects a positive part ID, not '0'"}}) {
+    SCOPED_TRACE(options);
+    const auto run = runCli("remesh " + quoted(dir / "missing.k") + " -o " + quoted(dir / "out.k") +
+                            " " + options);
+    EXPECT_EQ(run.exitCode, 2) << run.output;
+    EXPECT_TRUE(contains(run.output, message)) << run.output;
+    EXPECT_FALSE(contains(run.output, "missing.k")) << run.output;
+  }
 }
 
 TEST(RemeshCli, ShellsOnASolidMeshEndQuicklyWithinAnAddressSpaceLimit) {

@@ -232,16 +232,23 @@ TEST(Cli, AnOutputThatIsTheInputIsRefusedAndTheInputStays) {
 
 TEST(Cli, AFeatureAngleOutsideZeroTo180IsRefusedBeforeTheDeckIsRead) {
   const fs::path dir = scratchDir("cli-feature-angle");
-  for (const std::string& command : {"remesh " + quoted(dir / "missing.k") + " -o " +
-                                         quoted(dir / "out.k") + " --feature-angle 400",
-                                     "voxelize " + quoted(dir / "missing.k") + " -o " +
-                                         quoted(dir / "out.vdb") + " --feature-angle -5"}) {
-    const CliRun run = runCliSplit(command);
-    EXPECT_EQ(run.exitCode, 1) << command;
+  // remesh: a malformed command line (exit 2, the usage line), as its other numeric options.
+  const CliRun remesh = runCliSplit("remesh " + quoted(dir / "missing.k") + " -o " +
+                                    quoted(dir / "out.k") + " --feature-angle 400");
+  EXPECT_EQ(remesh.exitCode, 2) << remesh.err;
+  EXPECT_NE(remesh.err.find("usage: voxremesh remesh IN -o OUT"), std::string::npos) << remesh.err;
+  // voxelize still treats a bad setting as an error (exit 1).
+  const CliRun voxelize = runCliSplit("voxelize " + quoted(dir / "missing.k") + " -o " +
+                                      quoted(dir / "out.vdb") + " --feature-angle -5");
+  EXPECT_EQ(voxelize.exitCode, 1) << voxelize.err;
+  for (const CliRun& run : {remesh, voxelize}) {
     EXPECT_NE(run.err.find("--feature-angle must be an angle from 0 to 180 degrees"),
               std::string::npos)
         << run.err;
+    EXPECT_EQ(run.err.find("missing.k"), std::string::npos) << run.err;  // not read
   }
+  EXPECT_FALSE(fs::exists(dir / "out.k"));
+  EXPECT_FALSE(fs::exists(dir / "out.vdb"));
 }
 
 /// Writes each deck {name, text, expected} into `dir` and expects `info` on it to exit 1 with an

@@ -70,16 +70,12 @@ int runBatchCommand(const std::vector<std::string>& args) {
   BatchOptions options;
   options.resume = parsed.has("--resume");
   std::optional<int> threads;
-  try {  // a malformed option value is a bad command line (exit 2), unlike a bad job file
+  // A malformed option value is a bad command line (exit 2), unlike a bad job file.
+  parseOptionValues(kUsage, [&] {
     if (const auto shard = parsed.value("--shard")) parseShard(*shard, options);
-    if (const auto text = parsed.value("--threads")) {
-      const long long value = parseInteger("--threads", *text);
-      if (value < 0 || value > 4096) throw SettingError("--threads must be within 0..4096");
-      threads = static_cast<int>(value);
-    }
-  } catch (const SettingError& error) {
-    throw UsageError(error.what(), kUsage);
-  }
+    if (const auto text = parsed.value("--threads"))
+      threads = static_cast<int>(parseIntegerInRange("--threads", *text, 0, 4096));
+  });
   const auto summary = parsed.value("--summary");
   if (summary && summary->empty()) throw UsageError("option --summary needs a value", kUsage);
   const std::filesystem::path jobFile = parsed.positional[0];

@@ -181,6 +181,31 @@ inline long long parseInteger(const std::string& option, const std::string& text
   return value;
 }
 
+/// Parses the value of an integer option that must lie within [low, high] (a count of threads or
+/// retries). Throws SettingError naming the option when `text` is not a whole number or lies
+/// outside the range.
+inline long long parseIntegerInRange(const std::string& option, const std::string& text,
+                                     long long low, long long high) {
+  const long long value = parseInteger(option, text);
+  if (value < low || value > high)
+    throw SettingError(option + " must be within " + std::to_string(low) + ".." +
+                       std::to_string(high) + ", not " + text);
+  return value;
+}
+
+/// Runs `parseValues`, the parsing of a command's option values, and turns a SettingError it
+/// throws (a value that is not a number of the right kind, or out of its range) into a UsageError
+/// with `usage`: a malformed option value is a malformed command line (exit 2), unlike bad input
+/// (exit 1). Call it before any input is read, so that nothing is read or written.
+template <typename ParseValues>
+void parseOptionValues(const std::string& usage, ParseValues&& parseValues) {
+  try {
+    std::forward<ParseValues>(parseValues)();
+  } catch (const SettingError& error) {
+    throw UsageError(error.what(), usage);
+  }
+}
+
 /// Prints each warning on stderr as "warning: <text>".
 inline void printWarnings(const Warnings& warnings) {
   for (const std::string& warning : warnings)

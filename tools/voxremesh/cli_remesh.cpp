@@ -57,10 +57,10 @@ const char* const kHelp =
     "  -o OUT                 the deck to write (required)\n"
     "  --size H               target element size (default: the deck's median edge length)\n"
     "  --part-size PID=H,...  other target sizes for some parts\n"
-    "  --retries N            finer-voxel retries of a part that misses the acceptance (1)\n"
+    "  --retries N            finer-voxel retries of a part that misses the acceptance, 0..8 (1)\n"
     "  --parts P1,P2,...      the parts to remesh (default: all parts with shells)\n"
     "  --feature-angle DEG    edges turning more than DEG are feature lines (default 45)\n"
-    "  --threads N            threads (default: all cores)\n"
+    "  --threads N            threads, 0..4096 (default and 0: all cores)\n"
     "  --report REPORT.json   per part counts and times, every node reference remapped\n"
     "  --vtu QUALITY.vtu      the remeshed elements with every quality metric, a failure bit\n"
     "                         mask and a pass flag as cell data, and each node's distance to\n"
@@ -68,6 +68,15 @@ const char* const kHelp =
     "  --no-optimize          write the extracted quads without the optimisation\n"
     "  --quiet                no progress line (it shows on a terminal only anyway)\n";
 
+/// Parses a part ID given in `option`. Throws SettingError naming the option when `text` is not a
+/// whole number of at least 1 (part IDs are positive, as the readers require).
+Id parsePartId(const std::string& option, const std::string& text) {
+  const long long value = parseInteger(option, text);
+  if (value < 1) throw SettingError(option + " expects a positive part ID, not '" + text + "'");
+  return static_cast<Id>(value);
+}
+
+/// Parses --parts P1,P2,... Throws SettingError for an item that is not a positive part ID.
 std::vector<Id> parseParts(const std::string& text) {
   std::vector<Id> parts;
   std::size_t start = 0;
@@ -75,7 +84,7 @@ std::vector<Id> parseParts(const std::string& text) {
     const std::size_t comma = text.find(',', start);
     const std::string item =
         text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    parts.push_back(parseInteger("--parts", item));
+    parts.push_back(parsePartId("--parts", item));
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
@@ -136,7 +145,8 @@ std::string formatRemeshTotals(const std::string& output, const RemeshReport& re
   return line;
 }
 
-/// Parses --part-size PID=H,PID=H.
+/// Parses --part-size PID=H,PID=H. Throws SettingError for an item that is not a positive part ID,
+/// '=' and a positive size.
 std::map<Id, double> parsePartSizes(const std::string& text) {
   std::map<Id, double> sizes;
   std::size_t start = 0;
@@ -148,12 +158,42 @@ std::map<Id, double> parsePartSizes(const std::string& text) {
     if (equals == std::string::npos)
       throw SettingError("--part-size takes PID=SIZE pairs separated by commas, not '" + item +
                          "'");
-    sizes[parseInteger("--part-size", item.substr(0, equals))] =
-        parseNumber("--part-size", item.substr(equals + 1));
+    const Id part = parsePartId("--part-size", item.substr(0, equals));
+    const std::string sizeText = item.substr(equals + 1);
+    const double size = parseNumber("--part-size", sizeText);
+    if (!(size > 0))
+      throw SettingError("--part-size: the size of part " + std::to_string(part) +
+                         " must be positive, not " + sizeText);
+    sizes[part] = size;
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
   return sizes;
+}
+
+/// The settings the options of `parsed` give (--size, --part-size, --parts, --retries,
+/// --feature-angle, --threads, --no-optimize). Throws UsageError (exit 2) for a value that is not
+/// a number of the right kind or lies outside its range: nothing has been read at that point.
+RemeshSettings remeshSettings(const ParsedArgs& parsed) {
+  RemeshSettings settings;
+  settings.optimize = !parsed.has("--no-optimize");
+  parseOptionValues(kUsage, [&] {
+    if (const auto size = parsed.value("--size")) {
+      settings.targetSize = parseNumber("--size", *size);
+      if (settings.targetSize < 0)
+        throw SettingError(
+            "--size must be positive (or 0 for the deck's median edge length), not " + *size);
+    }
+    if (const auto parts = parsed.value("--parts")) settings.parts = parseParts(*parts);
+    if (const auto sizes = parsed.value("--part-size")) settings.partSizes = parsePartSizes(*sizes);
+    if (const auto retries = parsed.value("--retries"))
+      settings.retries = static_cast<int>(parseIntegerInRange("--retries", *retries, 0, 8));
+    if (const auto angle = parsed.value("--feature-angle"))
+      settings.sheets.featureAngleDeg = parseAngle("--feature-angle", *angle);
+    if (const auto threads = parsed.value("--threads"))
+      settings.threads = static_cast<int>(parseIntegerInRange("--threads", *threads, 0, 4096));
+  });
+  return settings;
 }
 
 }  // namespace
@@ -179,24 +219,7 @@ int runRemesh(const std::vector<std::string>& args) {
                                       1, 1, kUsage);
   const auto output = parsed.value("-o");
   if (!output || output->empty()) throw UsageError("missing -o OUT", kUsage);
-  RemeshSettings settings;
-  if (const auto size = parsed.value("--size")) settings.targetSize = parseNumber("--size", *size);
-  if (settings.targetSize < 0) throw SettingError("--size must be positive");
-  if (const auto parts = parsed.value("--parts")) settings.parts = parseParts(*parts);
-  if (const auto sizes = parsed.value("--part-size")) settings.partSizes = parsePartSizes(*sizes);
-  if (const auto retries = parsed.value("--retries")) {
-    const long long value = parseInteger("--retries", *retries);
-    if (value < 0 || value > 8) throw SettingError("--retries must be within 0..8");
-    settings.retries = static_cast<int>(value);
-  }
-  settings.optimize = !parsed.has("--no-optimize");
-  if (const auto angle = parsed.value("--feature-angle"))
-    settings.sheets.featureAngleDeg = parseAngle("--feature-angle", *angle);
-  if (const auto threads = parsed.value("--threads")) {
-    const long long value = parseInteger("--threads", *threads);
-    if (value < 0 || value > 4096) throw SettingError("--threads must be within 0..4096");
-    settings.threads = static_cast<int>(value);
-  }
+  const RemeshSettings settings = remeshSettings(parsed);
   formatFromPath(*output);  // an unknown extension fails before any work
   const auto vtu = parsed.value("--vtu");
   refuseOverwritingInput(parsed.positional[0], *output, "-o");
