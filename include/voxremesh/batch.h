@@ -66,6 +66,9 @@ struct BatchJob {
 };
 
 /// A parsed job file.
+/// The largest thread budget a job file or --threads may give.
+inline constexpr int kMaxBatchThreads = 4096;
+
 struct BatchFile {
   std::vector<BatchJob> jobs;
   int threads = 0;  ///< 0 when the file does not say

@@ -1,5 +1,6 @@
 // Reading a batch job file: structure checks, globs, variants, placeholders (batch.h).
 #include <fnmatch.h>
+#include <cmath>
 
 #include <algorithm>
 #include <map>
@@ -37,9 +38,11 @@ class FileReader {
     allowKeys(root, {"threads", "defaults", "jobs"}, "the job file");
     BatchFile file;
     if (const Json* threads = root.find("threads")) {
-      if (threads->type != Json::Type::Number || threads->number < 0 ||
-          threads->number != static_cast<int>(threads->number))
-        fail(*threads, "\"threads\" must be a whole number >= 0");
+      // Compared as doubles before the cast: a number out of int's range must not reach it.
+      if (threads->type != Json::Type::Number || !(threads->number >= 0.0) ||
+          threads->number > kMaxBatchThreads || threads->number != std::floor(threads->number))
+        fail(*threads,
+             "\"threads\" must be a whole number within 0.." + std::to_string(kMaxBatchThreads));
       file.threads = static_cast<int>(threads->number);
     }
     std::vector<std::pair<std::string, const Json*>> defaults;

@@ -1,5 +1,6 @@
 // The batch summary as CSV and JSON (batch.h).
 #include <charconv>
+#include <cmath>
 #include <exception>
 #include <filesystem>
 #include <optional>
@@ -116,11 +117,19 @@ void writeBatchSummaries(const std::vector<BatchJob>& jobs, const std::vector<Ba
 
 namespace {
 
-/// A count field of a summary entry, when it holds a number.
-std::optional<std::size_t> countOf(const json::Json& entry, const char* key) {
-  const json::Json* value = entry.find(key);
+/// A JSON number as a count: a whole number from 0 to 2^53 (where doubles still count by one),
+/// else none (checked before the cast, which is undefined for numbers out of range).
+std::optional<std::size_t> wholeCount(const json::Json* value) {
   if (!value || value->type != json::Json::Type::Number) return std::nullopt;
-  return static_cast<std::size_t>(value->number);
+  const double number = value->number;
+  if (!(number >= 0.0) || number > 9007199254740992.0 || number != std::floor(number))
+    return std::nullopt;
+  return static_cast<std::size_t>(number);
+}
+
+/// A count field of a summary entry, when it holds one.
+std::optional<std::size_t> countOf(const json::Json& entry, const char* key) {
+  return wholeCount(entry.find(key));
 }
 
 std::optional<double> numberOf(const json::Json& entry, const char* key) {
@@ -146,8 +155,9 @@ void restoreEarlierResults(const std::vector<BatchJob>& jobs, std::vector<BatchR
     const json::Json* index = entry.find("index");
     const json::Json* output = entry.find("output");
     const json::Json* status = entry.find("status");
-    if (!index || !output || !status || index->type != json::Json::Type::Number) continue;
-    const auto j = static_cast<std::size_t>(index->number);
+    const std::optional<std::size_t> at = wholeCount(index);
+    if (!at || !output || !status) continue;
+    const std::size_t j = *at;
     if (j >= jobs.size() || j >= results.size() || results[j].status != "skipped" ||
         jobs[j].output.string() != output->text ||
         (status->text != "ok" && status->text != "short"))

@@ -74,7 +74,7 @@ int runBatchCommand(const std::vector<std::string>& args) {
   parseOptionValues(kUsage, [&] {
     if (const auto shard = parsed.value("--shard")) parseShard(*shard, options);
     if (const auto text = parsed.value("--threads"))
-      threads = static_cast<int>(parseIntegerInRange("--threads", *text, 0, 4096));
+      threads = static_cast<int>(parseIntegerInRange("--threads", *text, 0, kMaxBatchThreads));
   });
   const auto summary = parsed.value("--summary");
   if (summary && summary->empty()) throw UsageError("option --summary needs a value", kUsage);
