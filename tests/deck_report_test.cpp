@@ -760,7 +760,9 @@ TEST(DeckReportPerformance, OneMillionElementGrid) {
     EXPECT_EQ(p.stats.boundaryLoops, 1u);
   }
   EXPECT_EQ(r.total.edgeLength.median, 1.0);
-  EXPECT_LT(seconds, 10.0);  // a generous bound for a shared machine; the figure is printed
+  // Not a speed measurement (bench_io measures that): quadratic work would take many minutes,
+  // while a loaded machine under the sanitizers takes about 15 s.
+  EXPECT_LT(seconds, 60.0);
 }
 
 TEST(DeckReportPerformance, OneMillionElementsInFourHundredParts) {
@@ -788,5 +790,5 @@ TEST(DeckReportPerformance, OneMillionElementsInFourHundredParts) {
   EXPECT_TRUE(std::is_sorted(r.parts.begin(), r.parts.end(),
                              [](const PartReport& a, const PartReport& b) { return a.id < b.id; }));
   EXPECT_EQ(r.total.boundaryEdges, 4 * n);
-  EXPECT_LT(seconds, 10.0);
+  EXPECT_LT(seconds, 60.0);  // quadratic work would take many minutes (see above)
 }
