@@ -55,10 +55,11 @@ std::size_t numberAfter(const std::string& text, const std::string& before) {
   return at == std::string::npos ? 0 : std::stoul(text.substr(at + before.size()));
 }
 
-const char* const kCellArrays[] = {"warping_deg",          "aspect_ratio",    "min_angle_deg",
-                                   "max_angle_deg",        "skew_deg",        "jacobian_ratio",
-                                   "jacobian_ratio_gauss", "scaled_jacobian", "taper",
-                                   "min_length",           "fail_mask",       "pass"};
+const char* const kCellArrays[] = {
+    "warping_deg", "aspect_ratio",   "min_angle_deg",        "max_angle_deg",
+    "skew_deg",    "jacobian_ratio", "jacobian_ratio_gauss", "scaled_jacobian",
+    "taper",       "min_length",     "judged_size",          "fail_mask",
+    "pass"};
 
 }  // namespace
 

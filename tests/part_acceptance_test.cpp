@@ -18,7 +18,7 @@ namespace {
 
 /// acceptPartMesh at size 1 (distance limit 0.25) with the default limits.
 PartAcceptance accept(const QuadMesh& mesh, const QuadMesh& original) {
-  return pipeline::acceptPartMesh(mesh, original, {}, 1.0, 1.0, QualitySettings{});
+  return pipeline::acceptPartMesh(mesh, original, {}, 1.0, 1.0, QualitySettings{}, {});
 }
 
 bool says(const PartAcceptance& a, const std::string& words) {
@@ -53,7 +53,8 @@ TEST(PartAcceptance, APlantedFoldFails) {
   const QuadMesh grid = test::unitGrid(8);
   std::vector<std::uint8_t> flags(grid.faces.size(), 0);
   flags[10] = 1;
-  const PartAcceptance b = pipeline::acceptPartMesh(grid, grid, flags, 1.0, 1.0, QualitySettings{});
+  const PartAcceptance b =
+      pipeline::acceptPartMesh(grid, grid, flags, 1.0, 1.0, QualitySettings{}, {});
   EXPECT_EQ(b.folded, 1u);
   EXPECT_FALSE(b.accepted);
 }

@@ -38,6 +38,15 @@
 //   taper = 1 - min A_i / (A / 2). 0 for a parallelogram, 1 when a corner triangle has no area.
 // - Minimum element length, the LS-DYNA shell characteristic length of the explicit time step:
 //   (1 + b) A / (longest edge), b = 0 for quads (A the quad area above), b = 1 for triangles.
+//   Its limit is minLengthFactor x the size the element is judged against: the target size, or,
+//   when channel curves are given (assessQuality), the width of the channel the element lies in
+//   where that is narrower. A channel is bounded by the curves the mesh must keep (boundary
+//   loops, feature lines, junction curves: channelCurves); its width at an element is the
+//   diameter of the largest ball that contains the element's centroid and that no curve crosses.
+//   A strip 1 mm wide meshed at 5 mm cannot have elements longer than 1 mm across it, so its
+//   elements are judged at 1 mm (DESIGN.md: narrow features are kept, with smaller elements,
+//   judged against the size actually used there); next to a single curve, or in a corner of a
+//   right angle or more, the ball grows past the element and the target size applies.
 //
 // - Degenerate corner (quads): the largest reflex-corrected interior angle above
 //   QualitySettings::degenerateCornerDeg (179 degrees): the element normal solvers estimate there
@@ -65,6 +74,8 @@
 #include "voxremesh/quad_mesh.h"
 
 namespace voxremesh {
+
+struct Sheet;
 
 /// Thresholds of the quality criteria. Defaults as DESIGN.md's table. A metric fails when it is
 /// beyond its limit (strictly greater than a maximum, strictly less than a minimum).
@@ -219,6 +230,11 @@ struct TopologyCounts {
 /// name existing points.
 TopologyCounts topologyCounts(const QuadMesh& mesh);
 
+/// The curves that bound the channels of a surface for the minimum-length criterion (see the top of
+/// the file): every sheet's boundary loops, feature lines and junction curves, in world
+/// coordinates, in sheet order. Preconditions: the sheets' curves name existing points.
+std::vector<MeshCurve> channelCurves(const std::vector<Sheet>& sheets);
+
 /// The quality of a whole mesh against the settings.
 struct QualityReport {
   QualitySettings settings;  ///< as given, with targetSize resolved
@@ -233,6 +249,11 @@ struct QualityReport {
   std::vector<std::uint32_t> elementFailures;  ///< per face: bit c set when Criterion c fails
   std::optional<SurfaceDistance> distance;     ///< when an original was given
   double distanceLimit = 0.0;                  ///< maxDistanceFactor x targetSize
+  /// Per face: the size its minimum length is judged against, targetSize or the width of the
+  /// narrow channel it lies in (when channel curves were given).
+  std::vector<double> judgedSize;
+  /// Faces judged against a channel narrower than targetSize (minimum length only).
+  std::size_t narrowChannelElements = 0;
 
   /// The mesh passes: at most settings.maxFailingShare of its elements fail a criterion, none is
   /// folded or has a degenerate corner, and the triangle share and (if measured) the distance are
@@ -248,10 +269,14 @@ struct QualityReport {
 /// @param mesh      the mesh; faces name existing points
 /// @param settings  thresholds (checked with checkQualitySettings)
 /// @param original  the surface the mesh should stay close to, or nullptr
+/// @param channels  the curves bounding the surface's channels (channelCurves of the original,
+///                  or of the mesh itself), or nullptr: every element's minimum length is then
+///                  judged against the target size
 /// Throws SettingError for bad settings or when targetSize is 0 and the mesh has no edges;
 /// std::invalid_argument when a face names a missing point.
 QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& settings = {},
-                            const QuadMesh* original = nullptr);
+                            const QuadMesh* original = nullptr,
+                            const std::vector<MeshCurve>* channels = nullptr);
 
 /// Renders a report as an aligned text table: per criterion the limit, worst value, failing count
 /// and share; then failing-any, the triangle share and the distance.

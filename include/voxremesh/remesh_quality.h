@@ -12,6 +12,7 @@
 #include "voxremesh/io.h"
 #include "voxremesh/pipeline.h"
 #include "voxremesh/quality.h"
+#include "voxremesh/sheets.h"
 
 namespace voxremesh {
 
@@ -23,11 +24,19 @@ namespace voxremesh {
 /// node the model does not define.
 FeModel partShells(const FeModel& model, Id part, const std::string& deckName);
 
+/// The curves bounding the channels (quality.h) of one part of a deck, or of all its parts when
+/// `part` is 0: channelCurves of the sheets buildSheets finds with `sheets` (seams with the
+/// deck's other parts included). Empty when the shells cannot be split into sheets (a part that
+/// is not orientable); every element is then judged against the target size.
+std::vector<MeshCurve> deckChannelCurves(const FeModel& deck, Id part,
+                                         const SheetSettings& sheets = {});
+
 /// The cell data of a quality report for writeVtu, one value per element in report order:
 /// every metric under its quality.h name (warping_deg, aspect_ratio, min_angle_deg,
 /// max_angle_deg, skew_deg, jacobian_ratio, jacobian_ratio_gauss, scaled_jacobian, taper,
-/// min_length), fail_mask (bit c set when Criterion c fails) and pass (1 or 0). Values that are
-/// not finite become +-1e30, which ParaView can read.
+/// min_length), judged_size (the size the minimum length is judged against: the target size or
+/// a narrower channel's width), fail_mask (bit c set when Criterion c fails) and pass (1 or 0).
+/// Values that are not finite become +-1e30, which ParaView can read.
 std::vector<FieldData> qualityCellFields(const QualityReport& report);
 
 /// The quality of one remeshed part.
@@ -51,13 +60,16 @@ struct PartQuality {
 /// @param settings  the limits (quality.h defaults); targetSize is replaced per part by the
 ///                  size the part was remeshed at (RemeshedPart::voxelSize), distanceSize by
 ///                  its target size
+/// @param sheets    the feature angles the remesh used: each part's channels (quality.h) are
+///                  the curves of its original sheets built with them
 /// @return one entry per remeshed or retried part of remesh.parts (kept parts are left out), in
 ///         that order
 /// Throws SettingError for bad settings; std::runtime_error naming the deck when a part has no
 /// shells in one of the decks or a shell names an undefined node.
 std::vector<PartQuality> assessRemeshedParts(const FeModel& original, const FeModel& remeshed,
                                              const RemeshReport& remesh,
-                                             const QualitySettings& settings = {});
+                                             const QualitySettings& settings = {},
+                                             const SheetSettings& sheets = {});
 
 /// Writes the remeshed parts' shells to a .vtu file with the quality of every element as cell
 /// data (qualityCellFields) and, as point data "distance", each node's distance to its part's

@@ -121,7 +121,7 @@ void runRemesh(const BatchJob& job, const JobSettings& settings, BatchResult& re
   const RemeshReport report = remeshDeck(deck, remesh);
   std::size_t assessed = 0, failing = 0;
   double distance = 0.0;
-  for (const PartQuality& part : assessRemeshedParts(original, deck, report)) {
+  for (const PartQuality& part : assessRemeshedParts(original, deck, report, {}, remesh.sheets)) {
     assessed += part.elementsAfter;
     failing += part.failing();
     distance = std::max(distance, part.maxDistance());

@@ -119,6 +119,7 @@ void runQuality(ChainState& state, const ActionCall& call) {
   FeModel shells;  // the elements as the .vtu shows them; node i is point i of `mesh`
   QuadMesh mesh;
   std::optional<QuadMesh> original;
+  std::vector<MeshCurve> channels;
   std::string title = item->name;
   if (item->kind == Kind::Mesh) {
     if (call.has("part"))
@@ -127,14 +128,16 @@ void runQuality(ChainState& state, const ActionCall& call) {
     mesh = item->mesh;
     shells = modelFromQuadMesh(mesh, mesh.part != 0 ? mesh.part : 1);
     original = originalOfMesh(state, *item, call);
+    channels = mesh.curves;
   } else {
     const Id part = call.has("part") ? call.integer("part") : 0;
     shells = partShells(item->deck, part, item->name);
     mesh = quadMeshFromModel(shells);
     if (part) title += " part " + std::to_string(part);
     if (call.has("original")) original = originalFromFile(state, call.text("original"), part);
+    channels = deckChannelCurves(item->deck, part);
   }
-  QualityReport report = assessQuality(mesh, settings, original ? &*original : nullptr);
+  QualityReport report = assessQuality(mesh, settings, original ? &*original : nullptr, &channels);
   if (call.has("json")) io::writeFileAtomically(call.text("json"), qualityReportJson(report));
   if (call.has("vtu")) {
     std::vector<FieldData> pointFields;

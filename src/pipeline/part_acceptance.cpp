@@ -105,11 +105,12 @@ double sheetWidth(const Sheet& sheet) {
 
 PartAcceptance acceptPartMesh(const QuadMesh& mesh, const QuadMesh& original,
                               const std::vector<std::uint8_t>& foldedAgainstOriginal, double size,
-                              double askedSize, const QualitySettings& settings) {
+                              double askedSize, const QualitySettings& settings,
+                              const std::vector<MeshCurve>& channels) {
   QualitySettings judged = settings;
   judged.targetSize = size;
   judged.distanceSize = askedSize;
-  const QualityReport report = assessQuality(mesh, judged, &original);
+  const QualityReport report = assessQuality(mesh, judged, &original, &channels);
   PartAcceptance a;
   a.size = size;
   a.elements = report.elements;

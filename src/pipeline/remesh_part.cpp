@@ -311,6 +311,7 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
   std::vector<SheetPlan> plans =
       planSheets(sheets, hardPoints, plan, settings, junctionSpacing, sizeNote);
   const QuadMesh original = quadMeshFromModel(model, plan.part);
+  const std::vector<MeshCurve> channels = channelCurves(sheets);
   const double finest = settings.finestVoxelShare * plan.targetSize;
   std::vector<std::string> failures;
   // One attempt with the sheet plans given; true when its mesh is accepted (then in `mesh`).
@@ -327,7 +328,7 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
       part.voxelSize = size;
       at = "size " + formatNumber(size) + ": ";
       part.acceptance = acceptPartMesh(candidate, original, folded, size, plan.targetSize,
-                                       settings.optimizeSettings.quality);
+                                       settings.optimizeSettings.quality, channels);
       const std::size_t missing = missingPoints(candidate, hardPositions);
       if (part.acceptance.accepted && missing > 0) {
         failures.push_back(at + std::to_string(missing) + " of its " +

@@ -28,10 +28,13 @@ std::string formatNumber(double value);
 /// @param size       the element size the mesh is judged against: the voxel used (> 0)
 /// @param askedSize  the part's target size, which the distance limit scales with (> 0)
 /// @param settings   the limits; targetSize and distanceSize are replaced
+/// @param channels   channelCurves of the part's original sheets: the minimum length of an
+///                   element in a channel narrower than `size` is judged against its width
 /// Throws SettingError for bad settings.
 PartAcceptance acceptPartMesh(const QuadMesh& mesh, const QuadMesh& original,
                               const std::vector<std::uint8_t>& foldedAgainstOriginal, double size,
-                              double askedSize, const QualitySettings& settings);
+                              double askedSize, const QualitySettings& settings,
+                              const std::vector<MeshCurve>& channels);
 
 /// The faces of a sheet as a mesh (oriented as the sheet), the surface its new mesh is projected
 /// on and checked against.

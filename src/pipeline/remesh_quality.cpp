@@ -48,12 +48,31 @@ FeModel partShells(const FeModel& model, Id part, const std::string& deckName) {
   return out;
 }
 
+std::vector<MeshCurve> deckChannelCurves(const FeModel& deck, Id part,
+                                         const SheetSettings& sheets) {
+  try {
+    return channelCurves(part ? buildSheets(deck, part, sheets) : buildAllSheets(deck, sheets));
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception&) {
+    return {};  // not split into sheets: judged against the target size
+  }
+}
+
 std::vector<FieldData> qualityCellFields(const QualityReport& report) {
-  std::vector<FieldData> fields = {
-      {"warping_deg", {}},          {"aspect_ratio", {}},    {"min_angle_deg", {}},
-      {"max_angle_deg", {}},        {"skew_deg", {}},        {"jacobian_ratio", {}},
-      {"jacobian_ratio_gauss", {}}, {"scaled_jacobian", {}}, {"taper", {}},
-      {"min_length", {}},           {"fail_mask", {}},       {"pass", {}}};
+  std::vector<FieldData> fields = {{"warping_deg", {}},
+                                   {"aspect_ratio", {}},
+                                   {"min_angle_deg", {}},
+                                   {"max_angle_deg", {}},
+                                   {"skew_deg", {}},
+                                   {"jacobian_ratio", {}},
+                                   {"jacobian_ratio_gauss", {}},
+                                   {"scaled_jacobian", {}},
+                                   {"taper", {}},
+                                   {"min_length", {}},
+                                   {"judged_size", {}},
+                                   {"fail_mask", {}},
+                                   {"pass", {}}};
   for (FieldData& field : fields) field.values.reserve(report.elements);
   for (std::size_t f = 0; f < report.elements; ++f) {
     const ElementQuality& q = report.elementValues[f];
@@ -67,6 +86,7 @@ std::vector<FieldData> qualityCellFields(const QualityReport& report) {
                              q.scaledJacobian,
                              q.taper,
                              q.minLength,
+                             report.judgedSize[f],
                              double(report.elementFailures[f]),
                              report.elementFailures[f] == 0 ? 1.0 : 0.0};
     for (std::size_t k = 0; k < fields.size(); ++k)
@@ -77,7 +97,8 @@ std::vector<FieldData> qualityCellFields(const QualityReport& report) {
 
 std::vector<PartQuality> assessRemeshedParts(const FeModel& original, const FeModel& remeshed,
                                              const RemeshReport& remesh,
-                                             const QualitySettings& settings) {
+                                             const QualitySettings& settings,
+                                             const SheetSettings& sheets) {
   checkQualitySettings(settings);
   std::vector<PartQuality> out;
   out.reserve(remesh.parts.size());
@@ -94,7 +115,9 @@ std::vector<PartQuality> assessRemeshedParts(const FeModel& original, const FeMo
     quality.part = id;
     quality.elementsBefore = before.shells.size();
     quality.elementsAfter = after.shells.size();
-    quality.report = assessQuality(quadMeshFromModel(after), partSettings, &originalMesh);
+    const std::vector<MeshCurve> channels = deckChannelCurves(original, id, sheets);
+    quality.report =
+        assessQuality(quadMeshFromModel(after), partSettings, &originalMesh, &channels);
     out.push_back(std::move(quality));
   }
   return out;

@@ -58,6 +58,12 @@ std::string formatQualityTable(const QualityReport& report) {
               c.applies ? real(c.worst) : "-", std::to_string(c.failing), percent(c.share));
   }
   out += "  " + std::string(62, '-') + "\n";
+  if (report.narrowChannelElements > 0) {
+    std::snprintf(line, sizeof line,
+                  "  min_length of %zu elements judged against the narrower channel they lie in\n",
+                  report.narrowChannelElements);
+    out += line;
+  }
   appendRow(out, "any criterion", "", "", std::to_string(report.failingAny),
             percent(report.failingAnyShare));
   appendRow(out, "tria share", "<= " + percent(report.settings.maxTriangleShare),
@@ -103,7 +109,8 @@ std::string qualityReportJson(const QualityReport& report) {
     appendJsonNumber(out, c.share);
     out += "}";
   }
-  out += "],\"failing_any\":" + std::to_string(report.failingAny);
+  out += "],\"narrow_channel_elements\":" + std::to_string(report.narrowChannelElements);
+  out += ",\"failing_any\":" + std::to_string(report.failingAny);
   out += ",\"failing_any_share\":";
   appendJsonNumber(out, report.failingAnyShare);
   out += ",\"tria_share\":";

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "quality/channel_width.h"
 #include "voxremesh/errors.h"
 #include "voxremesh/quality.h"
 
@@ -146,8 +147,44 @@ void addMeshCriterion(QualityReport& report, Criterion criterion, double limit,
 
 }  // namespace
 
+namespace {
+
+/// Per face, the size its minimum length is judged against: the target size, or the width of the
+/// channel it lies in where that is narrower and the face is too short for the target size.
+std::vector<double> judgedSizes(const QuadMesh& mesh, const std::vector<ElementQuality>& values,
+                                const QualitySettings& s, const std::vector<MeshCurve>* channels) {
+  using namespace geom;  // NOLINT: the vector operators
+  std::vector<double> sizes(mesh.faces.size(), s.targetSize);
+  if (!channels || channels->empty()) return sizes;
+  std::vector<std::size_t> shortFaces;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    if (fails(values[f].minLength, s.minLengthFactor * s.targetSize, false))
+      shortFaces.push_back(f);
+  if (shortFaces.empty()) return sizes;
+  const quality::ChannelWidth width(*channels, s.targetSize);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, shortFaces.size()),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                        const auto& face = mesh.faces[shortFaces[i]];
+                        const bool triangle = cornerCount(face) == 3;
+                        const int n = triangle ? 3 : 4;
+                        Vec3 centroid{0.0, 0.0, 0.0};
+                        for (int k = 0; k < n; ++k)
+                          centroid = centroid + mesh.points[face[std::size_t(k)]];
+                        centroid = centroid * (1.0 / n);
+                        const auto& p = mesh.points;
+                        const Vec3 normal = elementNormal(p[face[0]], p[face[1]], p[face[2]],
+                                                          p[face[triangle ? 2 : 3]], triangle);
+                        sizes[shortFaces[i]] = std::min(s.targetSize, width.at(centroid, normal));
+                      }
+                    });
+  return sizes;
+}
+
+}  // namespace
+
 QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& settings,
-                            const QuadMesh* original) {
+                            const QuadMesh* original, const std::vector<MeshCurve>* channels) {
   checkQualitySettings(settings);
   QualityReport report;
   report.settings = settings;
@@ -160,6 +197,9 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
   report.elementValues = elementQualities(mesh);
   report.elements = mesh.faces.size();
   report.elementFailures.assign(report.elements, 0);
+  report.judgedSize = judgedSizes(mesh, report.elementValues, s, channels);
+  for (double size : report.judgedSize)
+    if (size < s.targetSize) ++report.narrowChannelElements;
   for (int c = 0; c < kElementCriterionCount; ++c) {
     const auto criterion = static_cast<Criterion>(c);
     const CriterionRule& r = kRules[c];
@@ -178,7 +218,10 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
         summary.worst = value;
         first = false;
       }
-      if (fails(value, summary.limit, r.isMaximum)) {
+      const double limit = criterion == Criterion::MinLength
+                               ? s.minLengthFactor * report.judgedSize[f]
+                               : summary.limit;
+      if (fails(value, limit, r.isMaximum)) {
         ++summary.failing;
         report.elementFailures[f] |= 1u << c;
       }

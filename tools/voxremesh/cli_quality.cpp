@@ -120,15 +120,21 @@ int runQuality(const std::vector<std::string>& args) {
 
   const std::string& path = parsed.positional[0];
   Warnings warnings;
-  const FeModel shells = partShells(readDeck(path, readOptions, &warnings), part, path);
+  const FeModel deck = readDeck(path, readOptions, &warnings);
+  const FeModel shells = partShells(deck, part, path);
   const QuadMesh mesh = quadMeshFromModel(shells);
   std::optional<QuadMesh> original;
+  std::vector<MeshCurve> channels;
   if (const auto originalPath = parsed.value("--original")) {
     const FeModel originalModel = readDeck(*originalPath, readOptions, &warnings);
     original = quadMeshFromModel(partShells(originalModel, part, *originalPath));
+    channels = deckChannelCurves(originalModel, part);
+  } else {
+    channels = deckChannelCurves(deck, part);
   }
   printWarnings(warnings);
-  const QualityReport report = assessQuality(mesh, settings, original ? &*original : nullptr);
+  const QualityReport report =
+      assessQuality(mesh, settings, original ? &*original : nullptr, &channels);
 
   if (const auto vtu = parsed.value("--vtu")) {
     std::vector<FieldData> pointFields;

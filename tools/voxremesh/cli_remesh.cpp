@@ -246,7 +246,8 @@ int runRemesh(const std::vector<std::string>& args) {
       progress.update("quality", "deck", 1.0);
       std::vector<PartQuality> quality;
       tbb::task_arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic)
-          .execute([&] { quality = assessRemeshedParts(*original, deck, report); });
+          .execute(
+              [&] { quality = assessRemeshedParts(*original, deck, report, {}, settings.sheets); });
       writeRemeshQualityVtu(deck, quality, *vtu);
     }
     if (const auto path = parsed.value("--report")) writeRemeshReport(report, *path);
