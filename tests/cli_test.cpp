@@ -176,10 +176,10 @@ TEST(Cli, InfoPrintsTheTableAndValidJson) {
   ASSERT_EQ(tolerance.exitCode, 0) << tolerance.err;
   EXPECT_EQ(jsonNumber(tolerance.out, "tolerance"), 0.125);
   const CliRun badTolerance = runCliSplit("info " + quoted(dir / "deck.k") + " --tolerance abc");
-  EXPECT_EQ(badTolerance.exitCode, 1);
+  EXPECT_EQ(badTolerance.exitCode, 2);
   EXPECT_NE(badTolerance.err.find("--tolerance expects a number, not 'abc'"), std::string::npos)
       << badTolerance.err;
-  EXPECT_EQ(runCliSplit("info " + quoted(dir / "deck.k") + " --tolerance -1").exitCode, 1);
+  EXPECT_EQ(runCliSplit("info " + quoted(dir / "deck.k") + " --tolerance -1").exitCode, 2);
   fs::copy_file(dir / "deck.k", dir / "deck.txt");
   EXPECT_EQ(runCliSplit("info " + quoted(dir / "deck.txt")).exitCode, 1);  // unknown extension
   EXPECT_EQ(runCliSplit("info " + quoted(dir / "deck.txt") + " --format=k").exitCode, 0);
@@ -237,10 +237,10 @@ TEST(Cli, AFeatureAngleOutsideZeroTo180IsRefusedBeforeTheDeckIsRead) {
                                     quoted(dir / "out.k") + " --feature-angle 400");
   EXPECT_EQ(remesh.exitCode, 2) << remesh.err;
   EXPECT_NE(remesh.err.find("usage: voxremesh remesh IN -o OUT"), std::string::npos) << remesh.err;
-  // voxelize still treats a bad setting as an error (exit 1).
+  // voxelize too.
   const CliRun voxelize = runCliSplit("voxelize " + quoted(dir / "missing.k") + " -o " +
                                       quoted(dir / "out.vdb") + " --feature-angle -5");
-  EXPECT_EQ(voxelize.exitCode, 1) << voxelize.err;
+  EXPECT_EQ(voxelize.exitCode, 2) << voxelize.err;
   for (const CliRun& run : {remesh, voxelize}) {
     EXPECT_NE(run.err.find("--feature-angle must be an angle from 0 to 180 degrees"),
               std::string::npos)
@@ -335,10 +335,10 @@ TEST(Cli, FailedConvertLeavesNoOutputFile) {
       runCliSplit("convert " + quoted(dir / "good.k") + " " + quoted(dir / "missing" / "out.obj"));
   EXPECT_EQ(noFolder.exitCode, 1);
   EXPECT_FALSE(fs::exists(dir / "missing" / "out.obj"));
-  // An unknown target format fails before anything is read or written.
+  // An unknown target format fails before anything is read or written (a malformed command line).
   const CliRun format =
       runCliSplit("convert " + quoted(dir / "good.k") + " " + quoted(dir / "out.xyz"));
-  EXPECT_EQ(format.exitCode, 1);
+  EXPECT_EQ(format.exitCode, 2);
   EXPECT_NE(format.err.find("xyz"), std::string::npos) << format.err;
   for (const auto& entry : fs::directory_iterator(dir))
     EXPECT_TRUE(entry.path().extension() == ".k" || entry.path().filename() == "kept.obj")

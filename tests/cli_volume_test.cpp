@@ -238,8 +238,9 @@ TEST(CliVolume, BadInputFailsWithoutOutput) {
   EXPECT_EQ(missing.err.rfind("voxremesh: error: ", 0), 0u) << missing.err;
   EXPECT_TRUE(contains(missing.err, (dir / "no-such.k").string())) << missing.err;
 
+  // Malformed option values are a malformed command line: exit 2 with the usage.
   const CliRun negative = runCliSplit("voxelize " + deck + " -o " + quoted(vdb) + " --voxel -1");
-  EXPECT_EQ(negative.exitCode, 1);
+  EXPECT_EQ(negative.exitCode, 2);
   EXPECT_TRUE(contains(negative.err, "voxel size must be a finite number > 0 (got -1)"))
       << negative.err;
 
@@ -258,8 +259,8 @@ TEST(CliVolume, BadInputFailsWithoutOutput) {
                                  std::string("--band 0"), std::string("--invalid-angle 95"),
                                  std::string("--feature-angle 200"), std::string("--part abc")}) {
     const CliRun r = runCliSplit("voxelize " + deck + " -o " + quoted(vdb) + " " + bad);
-    EXPECT_EQ(r.exitCode, 1) << bad;
-    EXPECT_EQ(r.err.rfind("voxremesh: error: ", 0), 0u) << bad << ": " << r.err;
+    EXPECT_EQ(r.exitCode, 2) << bad;
+    EXPECT_TRUE(contains(r.err, "usage: voxremesh voxelize")) << bad << ": " << r.err;
   }
   EXPECT_EQ(runCliSplit("voxelize " + deck + " -o " + quoted(dir / "missing" / "out.vdb")).exitCode,
             1);
@@ -276,11 +277,11 @@ TEST(CliVolume, BadInputFailsWithoutOutput) {
   EXPECT_TRUE(contains(notVdb.err, samplePart().string())) << notVdb.err;
   EXPECT_EQ(runCliSplit("slice " + quoted(sampleVolume()) + " --axis w --at 0 -o " + quoted(png))
                 .exitCode,
-            1);
+            2);
   EXPECT_EQ(runCliSplit("slice " + quoted(sampleVolume()) + " --axis z --at 0 --scale 0 -o " +
                         quoted(png))
                 .exitCode,
-            1);
+            2);
   const CliRun inspectMissing = runCliSplit("inspect " + quoted(dir / "none.vdb"));
   EXPECT_EQ(inspectMissing.exitCode, 1);
   EXPECT_TRUE(contains(inspectMissing.err, (dir / "none.vdb").string())) << inspectMissing.err;

@@ -42,10 +42,13 @@ int runConvert(const std::vector<std::string>& args) {
   const std::string& out = parsed.positional[1];
   refuseOverwritingInput(in, out, "OUT");
   ReadOptions readOptions;
-  if (const auto from = parsed.value("--from")) readOptions.format = formatFromName(*from);
-  // Decide the target format before reading, so that a bad name fails at once.
-  const auto to = parsed.value("--to");
-  const DeckFormat target = to ? formatFromName(*to) : formatFromPath(out);
+  DeckFormat target{};
+  // Decide the formats before reading, so that a bad name fails at once.
+  parseOptionValues(kUsage, [&] {
+    if (const auto from = parsed.value("--from")) readOptions.format = formatFromName(*from);
+    const auto to = parsed.value("--to");
+    target = to ? formatFromName(*to) : formatFromPath(out);
+  });
   WriteOptions writeOptions;
   writeOptions.format = target;
   writeOptions.binary = !parsed.has("--ascii");

@@ -37,10 +37,15 @@ int runInfo(const std::vector<std::string>& args) {
   const ParsedArgs parsed =
       parseArgs(args, {{"--json", false}, {"--format", true}, {"--tolerance", true}}, 1, 1, kUsage);
   ReadOptions readOptions;
-  if (const auto format = parsed.value("--format")) readOptions.format = formatFromName(*format);
   ReportSettings settings;
-  if (const auto tolerance = parsed.value("--tolerance"))
-    settings.tolerance = parseNumber("--tolerance", *tolerance);
+  parseOptionValues(kUsage, [&] {
+    if (const auto format = parsed.value("--format")) readOptions.format = formatFromName(*format);
+    if (const auto tolerance = parsed.value("--tolerance")) {
+      settings.tolerance = parseNumber("--tolerance", *tolerance);
+      if (*settings.tolerance < 0.0)
+        throw SettingError("--tolerance must be zero or positive, not " + *tolerance);
+    }
+  });
 
   const std::string& path = parsed.positional[0];
   Warnings warnings;

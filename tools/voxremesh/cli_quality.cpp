@@ -109,14 +109,17 @@ int runQuality(const std::vector<std::string>& args) {
                                       1, 1, kUsage);
 
   QualitySettings settings;
-  for (const LimitOption& option : kLimits)
-    if (const auto text = parsed.value(option.name))
-      settings.*(option.field) = parseNumber(option.name, *text);
-  settings.jacobianAtGaussPoints = parsed.has("--jacobian-at-gauss-points");
-  checkQualitySettings(settings);
   ReadOptions readOptions;
-  if (const auto format = parsed.value("--format")) readOptions.format = formatFromName(*format);
-  const Id part = parsed.has("--part") ? parseInteger("--part", *parsed.value("--part")) : 0;
+  Id part = 0;
+  parseOptionValues(kUsage, [&] {
+    for (const LimitOption& option : kLimits)
+      if (const auto text = parsed.value(option.name))
+        settings.*(option.field) = parseNumber(option.name, *text);
+    settings.jacobianAtGaussPoints = parsed.has("--jacobian-at-gauss-points");
+    checkQualitySettings(settings);
+    if (const auto format = parsed.value("--format")) readOptions.format = formatFromName(*format);
+    if (const auto text = parsed.value("--part")) part = parseInteger("--part", *text);
+  });
 
   const std::string& path = parsed.positional[0];
   Warnings warnings;

@@ -58,21 +58,21 @@ int runSlice(const std::vector<std::string>& args) {
   if (!axisText) throw UsageError("missing --axis x|y|z", kUsage);
   if (!atText) throw UsageError("missing --at WORLD_COORD", kUsage);
   if (!output || output->empty()) throw UsageError("missing -o SLICE.png", kUsage);
-  const Axis axis = axisFromName(*axisText);
-  const double at = parseNumber("--at", *atText);
+  Axis axis = Axis::X;
+  double at = 0.0;
+  long long sheet = 0;
   SliceStyle style;
-  if (const auto scale = parsed.value("--scale")) {
-    const long long pixels = parseInteger("--scale", *scale);
-    if (pixels < 1 || pixels > 64)
-      throw SettingError("--scale must be between 1 and 64 pixels per voxel (got " + *scale + ")");
-    style.pixelsPerVoxel = static_cast<int>(pixels);
-  }
+  parseOptionValues(kUsage, [&] {
+    axis = axisFromName(*axisText);
+    at = parseNumber("--at", *atText);
+    if (const auto scale = parsed.value("--scale"))
+      style.pixelsPerVoxel = static_cast<int>(parseIntegerInRange("--scale", *scale, 1, 64));
+    if (const auto text = parsed.value("--sheet")) sheet = parseInteger("--sheet", *text);
+  });
   const std::filesystem::path out = *output;
   if (out.extension() != ".png")
     printWarnings({out.string() + " does not end in .png; image viewers may not recognise it"});
 
-  const long long sheet =
-      parsed.has("--sheet") ? parseInteger("--sheet", *parsed.value("--sheet")) : 0;
   const std::vector<Volume> volumes = readVolumes(parsed.positional[0]);
   const SliceImage image = renderSlice(sheetVolume(volumes, sheet, "--sheet"), axis, at, style);
   writePng(image, out);

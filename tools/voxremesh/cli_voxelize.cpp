@@ -50,13 +50,13 @@ const char* const kHelp =
     "Settings the machine cannot hold (a voxel size needing more memory than half of it) are\n"
     "refused before anything is allocated, with the smallest voxel size that fits.\n";
 
-/// The part to voxelize: --part when given (it must have shells), else the deck's only shell part.
-Id choosePartOption(const FeModel& model, const ParsedArgs& parsed, const std::string& deck) {
-  const auto text = parsed.value("--part");
+/// The part to voxelize: `given` (--part, 0 when not given; it must have shells), else the deck's
+/// only shell part.
+Id choosePartOption(const FeModel& model, Id given, const std::string& deck) {
   try {
-    return choosePart(model, text ? parseInteger("--part", *text) : 0, deck, "--part");
+    return choosePart(model, given, deck, "--part");
   } catch (const SettingError& error) {
-    if (text) throw;
+    if (given) throw;
     throw UsageError(error.what(), kUsage);
   }
 }
@@ -105,12 +105,17 @@ int runVoxelize(const std::vector<std::string>& args) {
   const auto output = parsed.value("-o");
   if (!output || output->empty()) throw UsageError("missing -o PART.vdb", kUsage);
   // Settings first, so that a bad value fails before the deck is read.
-  const VolumeSettings settings = volumeSettings(parsed);
+  VolumeSettings settings;
   SheetSettings sheetSettings;
-  if (const auto angle = parsed.value("--feature-angle"))
-    sheetSettings.featureAngleDeg = parseAngle("--feature-angle", *angle);
   ReadOptions readOptions;
-  if (const auto format = parsed.value("--format")) readOptions.format = formatFromName(*format);
+  Id givenPart = 0;
+  parseOptionValues(kUsage, [&] {
+    settings = volumeSettings(parsed);
+    if (const auto text = parsed.value("--part")) givenPart = parseInteger("--part", *text);
+    if (const auto angle = parsed.value("--feature-angle"))
+      sheetSettings.featureAngleDeg = parseAngle("--feature-angle", *angle);
+    if (const auto format = parsed.value("--format")) readOptions.format = formatFromName(*format);
+  });
   const std::filesystem::path out = *output;
   if (out.has_parent_path() && !std::filesystem::is_directory(out.parent_path()))
     throw std::runtime_error("cannot write " + out.string() + ": no folder " +
@@ -119,7 +124,7 @@ int runVoxelize(const std::vector<std::string>& args) {
   const std::string& deck = parsed.positional[0];
   Warnings warnings;
   const FeModel model = readDeck(deck, readOptions, &warnings);
-  const Id part = choosePartOption(model, parsed, deck);
+  const Id part = choosePartOption(model, givenPart, deck);
   const std::vector<Sheet> sheets = buildSheets(model, part, sheetSettings);
   std::size_t shells = 0, faces = 0;
   for (const Shell& shell : model.shells) shells += shell.part == part ? 1 : 0;
