@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -561,8 +561,8 @@ TEST(DeckAssembly, LsDynaShellSetsAndShellLoadsCoverTheSameRegionOfTheNewMesh) {
   std::string deck = "*KEYWORD\n*NODE\n";
   char line[96];
   for (int n = 0; n < 9; ++n) {
-    std::snprintf(line, sizeof line, "%8d%16.1f%16.1f%16.1f\n", n + 1, double(n % 3),
-                  double(n / 3), 0.0);
+    std::snprintf(line, sizeof line, "%8d%16.1f%16.1f%16.1f\n", n + 1, double(n % 3), double(n / 3),
+                  0.0);
     deck += line;
   }
   deck += "*ELEMENT_SHELL\n";
@@ -583,14 +583,18 @@ TEST(DeckAssembly, LsDynaShellSetsAndShellLoadsCoverTheSameRegionOfTheNewMesh) {
       "*LOAD_SHELL_ELEMENT\n"
       "$#     eid      lcid        sf        at\n"
       "         4         1       2.5       0.0\n"
+      "*DATABASE_HISTORY_SHELL\n"
+      "         3         4\n"
+      "*DATABASE_HISTORY_SHELL_ID\n"
+      "         1corner\n"
       "*END\n";
   const auto dir = scratchDir("assembly_lsdyna_shell_sets");
   writeText(dir / "in.k", deck);
   FeModel model = readDeck(dir / "in.k");
   const AssemblyReport report = replacePartMeshes(model, {plateMesh(4, 1)});
-  EXPECT_EQ(report.elementSetMembersRewritten, 2u);
-  EXPECT_EQ(report.elementLoadsRewritten, 1u);
-  ASSERT_EQ(report.unmapped.size(), 2u);  // shells 3 and 4 in the GENERATE range
+  EXPECT_EQ(report.elementSetMembersRewritten, 4u);  // 2 in the set, 2 in the history list
+  EXPECT_EQ(report.elementLoadsRewritten, 2u);       // the pressure and the history record
+  ASSERT_EQ(report.unmapped.size(), 2u);             // shells 3 and 4 in the GENERATE range
   EXPECT_EQ(report.unmapped[0].keyword, "*SET_SHELL_LIST_GENERATE");
 
   std::vector<Id> members = integersAfter(block(model, "*SET_SHELL_LIST").text, 2);
@@ -601,17 +605,34 @@ TEST(DeckAssembly, LsDynaShellSetsAndShellLoadsCoverTheSameRegionOfTheNewMesh) {
   const std::vector<Id> values = integersAfter(loads, 1);  // eid, lcid per line (2.5 is no integer)
   for (std::size_t k = 0; k < values.size(); k += 2) loaded.push_back(values[k]);
   std::sort(loaded.begin(), loaded.end());
-  EXPECT_EQ(loaded, newShellsWhere(report.firstNewElementId,
-                                   [](int i, int j) { return i >= 2 && j >= 2; }))
+  EXPECT_EQ(loaded,
+            newShellsWhere(report.firstNewElementId, [](int i, int j) { return i >= 2 && j >= 2; }))
       << loads;
   EXPECT_EQ(std::count(loads.begin(), loads.end(), '\n'), 6) << loads;  // keyword, comment, 4
+  // The history list of the top row lists the new shells on it; the history record of shell 1
+  // is repeated, heading and all, for the 4 new shells on it.
+  std::vector<Id> history = integersAfter(block(model, "*DATABASE_HISTORY_SHELL").text, 1);
+  std::sort(history.begin(), history.end());
+  EXPECT_EQ(history, newShellsWhere(report.firstNewElementId, [](int, int j) { return j >= 2; }));
+  const std::string records = block(model, "*DATABASE_HISTORY_SHELL_ID").text;
+  std::vector<Id> recorded;  // the I10 field before each heading
+  for (std::size_t at = records.find('\n') + 1; at < records.size();) {
+    recorded.push_back(std::stoll(records.substr(at, 10)));
+    at = records.find('\n', at) + 1;
+    if (at == 0) break;
+  }
+  std::sort(recorded.begin(), recorded.end());
+  EXPECT_EQ(recorded,
+            newShellsWhere(report.firstNewElementId, [](int i, int j) { return i < 2 && j < 2; }))
+      << records;
+  EXPECT_EQ(std::count(records.begin(), records.end(), 'c'), 4) << records;  // "corner" 4 times
 }
 
 TEST(DeckAssembly, AbaqusElementSetsAndDloadsCoverTheSameRegionOfTheNewMesh) {
   std::string deck = "*NODE\n";
   for (int n = 0; n < 9; ++n)
-    deck += std::to_string(n + 1) + ", " + std::to_string(n % 3) + ".0, " +
-            std::to_string(n / 3) + ".0, 0.0\n";
+    deck += std::to_string(n + 1) + ", " + std::to_string(n % 3) + ".0, " + std::to_string(n / 3) +
+            ".0, 0.0\n";
   deck += "*ELEMENT, TYPE=S4, ELSET=PLATE\n";
   for (int j = 0; j < 2; ++j)
     for (int i = 0; i < 2; ++i) {
@@ -645,8 +666,8 @@ TEST(DeckAssembly, AbaqusElementSetsAndDloadsCoverTheSameRegionOfTheNewMesh) {
       << out;
   std::vector<Id> loaded = integersAfter(out.substr(dload), 1);
   std::sort(loaded.begin(), loaded.end());
-  EXPECT_EQ(loaded, newShellsWhere(report.firstNewElementId,
-                                   [](int i, int j) { return i >= 2 && j < 2; }))
+  EXPECT_EQ(loaded,
+            newShellsWhere(report.firstNewElementId, [](int i, int j) { return i >= 2 && j < 2; }))
       << out;
 }
 

@@ -63,12 +63,14 @@
 //   of the new shell on the old one, so that the total force stays; the card on the removed
 //   shell is dropped. A card whose pressures cannot be rewritten in place goes whole to the new
 //   shells mostly on its shell. A PLOAD4 THRU range is left as it is. An LS-DYNA
-//   *LOAD_SHELL_ELEMENT and an Abaqus *DLOAD line naming a removed shell are repeated for the
-//   new shells mostly on it (their values as they are), and dropped.
-// - Shell sets: an LS-DYNA *SET_SHELL / *SET_SHELL_LIST (_TITLE) or Abaqus *ELSET list naming
-//   removed shells lists instead the new shells most of whose area lies on its members (each
-//   once), in the fields of the removed members and in lines added after its last one. A
-//   GENERATE range covering a removed shell cannot be rewritten: it is an UnmappedReference.
+//   *LOAD_SHELL_ELEMENT or *DATABASE_HISTORY_SHELL_ID line and an Abaqus *DLOAD line naming a
+//   removed shell are repeated for the new shells mostly on it (their values and headings as
+//   they are), and dropped.
+// - Shell sets: an LS-DYNA *SET_SHELL / *SET_SHELL_LIST (_TITLE) or *DATABASE_HISTORY_SHELL
+//   list or an Abaqus *ELSET list naming removed shells lists instead the new shells most of
+//   whose area lies on its members (each once), in the fields of the removed members and in
+//   lines added after its last one. A GENERATE range covering a removed shell cannot be
+//   rewritten: it is an UnmappedReference.
 // - Unmapped references: a reference that cannot be rewritten (a range such as *SET_NODE_LIST_
 //   GENERATE, SPC1 THRU or *NSET GENERATE covering an old node; a new ID wider than its fixed
 //   field; a tab-expanded Nastran field), and any integer equal to an old node ID in keywords
@@ -76,11 +78,11 @@
 //   *ELEMENT_, *CONSTRAINED_, *BOUNDARY_, *LOAD_, *INITIAL_, *SET_NODE, *DATABASE_HISTORY_ or
 //   containing _NODE, except those naming sets, parts or contacts: a name (without _TITLE or
 //   _ID) ending in _SET or holding _SET_, ending in _RIGID, *CONTACT_..., *CONSTRAINED_RIGID_
-//   BODIES and the shell keywords read for their shell IDs; Nastran cards starting with C or R, MPC, ASET, OMIT, SUPORT, FORCE1/2,
-//   MOMENT1/2, TEMP; Abaqus *EQUATION, *MPC, *INITIAL CONDITIONS, *KINEMATIC COUPLING) is
-//   listed in UnmappedReference and its node is kept (detached from the new mesh), never
-//   dropped. Such a scan cannot tell a node ID from another number that happens to be equal, so
-//   it may list false alarms; it never changes the deck.
+//   BODIES and the shell keywords read for their shell IDs; Nastran cards starting with C or R,
+//   MPC, ASET, OMIT, SUPORT, FORCE1/2, MOMENT1/2, TEMP; Abaqus *EQUATION, *MPC, *INITIAL
+//   CONDITIONS, *KINEMATIC COUPLING) is listed in UnmappedReference and its node is kept (detached
+//   from the new mesh), never dropped. Such a scan cannot tell a node ID from another number that
+//   happens to be equal, so it may list false alarms; it never changes the deck.
 #pragma once
 
 #include <cstddef>

@@ -51,8 +51,9 @@ constexpr KeywordSpec kKeywords[] = {
     {"*ELEMENT_SPH", 0, 3, {8, 8, 16}, 0x1},
 };
 
-/// Keywords read field by field whose fields name shell elements: shell sets (their members
-/// cover a region) and pressures on shells (a record repeated for the new shells).
+/// Keywords read field by field whose fields name shell elements: shell sets and history lists
+/// (their members cover a region), pressures on shells and history shells with a heading (a
+/// record repeated for the new shells).
 constexpr KeywordSpec kElementKeywords[] = {
     {"*SET_SHELL", 1, 8, k10x8, 0xFF, false, NodeRole::Member},
     {"*SET_SHELL_LIST", 1, 8, k10x8, 0xFF, false, NodeRole::Member},
@@ -61,6 +62,8 @@ constexpr KeywordSpec kElementKeywords[] = {
     {"*SET_SHELL_LIST_GENERATE", 1, 8, k10x8, 0xFF, true},
     {"*SET_SHELL_LIST_GENERATE_TITLE", 2, 8, k10x8, 0xFF, true},
     {"*LOAD_SHELL_ELEMENT", 0, 4, k10x8, 0x1, false, NodeRole::Record},
+    {"*DATABASE_HISTORY_SHELL", 0, 8, k10x8, 0xFF, false, NodeRole::Member},
+    {"*DATABASE_HISTORY_SHELL_ID", 0, 1, k10x8, 0x1, false, NodeRole::Record},
 };
 
 /// Keywords not read field by field whose data may still name nodes: element, constraint,

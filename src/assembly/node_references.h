@@ -77,7 +77,8 @@ std::vector<NodeReference> findNodeReferences(const FeModel& model,
 /// Finds the references to the shell elements of `watched` in the verbatim blocks of `model`:
 /// Nastran PLOAD4 cards (a Record each, spanning its continuation lines; a PLOAD4 THRU range is
 /// left as it is); LS-DYNA shell sets (*SET_SHELL..., Members of their card's list, GENERATE
-/// ranges as Range) and *LOAD_SHELL_ELEMENT (Records); Abaqus *ELSET lists (Members, GENERATE as
+/// ranges as Range), *DATABASE_HISTORY_SHELL (Members), *LOAD_SHELL_ELEMENT and
+/// *DATABASE_HISTORY_SHELL_ID (Records); Abaqus *ELSET lists (Members, GENERATE as
 /// Range) and *DLOAD lines naming an element (Records). Deterministic, in block order and text
 /// order.
 std::vector<NodeReference> findElementReferences(const FeModel& model,

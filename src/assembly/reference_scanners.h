@@ -39,7 +39,8 @@ io::lsdyna::CardFormat lsDynaDeckFormat(const FeModel& model);
 void scanLsDynaBlock(std::string_view text, io::lsdyna::CardFormat deckFormat,
                      const ReferenceSink& sink);
 /// Scans one LS-DYNA keyword block for references to watched shells: shell sets (*SET_SHELL...,
-/// members; GENERATE ranges) and *LOAD_SHELL_ELEMENT (records).
+/// members; GENERATE ranges), history lists (*DATABASE_HISTORY_SHELL, members), and
+/// *LOAD_SHELL_ELEMENT and *DATABASE_HISTORY_SHELL_ID (records).
 void scanLsDynaElementBlock(std::string_view text, io::lsdyna::CardFormat deckFormat,
                             const ReferenceSink& sink);
 /// Scans one run of Nastran bulk data lines.
