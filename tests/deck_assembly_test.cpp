@@ -587,6 +587,9 @@ TEST(DeckAssembly, LsDynaShellSetsAndShellLoadsCoverTheSameRegionOfTheNewMesh) {
       "         3         4\n"
       "*DATABASE_HISTORY_SHELL_ID\n"
       "         1corner\n"
+      "*SET_SEGMENT\n"
+      "         7\n"
+      "         1         2         5         4\n"
       "*END\n";
   const auto dir = scratchDir("assembly_lsdyna_shell_sets");
   writeText(dir / "in.k", deck);
@@ -594,8 +597,13 @@ TEST(DeckAssembly, LsDynaShellSetsAndShellLoadsCoverTheSameRegionOfTheNewMesh) {
   const AssemblyReport report = replacePartMeshes(model, {plateMesh(4, 1)});
   EXPECT_EQ(report.elementSetMembersRewritten, 4u);  // 2 in the set, 2 in the history list
   EXPECT_EQ(report.elementLoadsRewritten, 2u);       // the pressure and the history record
-  ASSERT_EQ(report.unmapped.size(), 2u);             // shells 3 and 4 in the GENERATE range
-  EXPECT_EQ(report.unmapped[0].keyword, "*SET_SHELL_LIST_GENERATE");
+  // Shells 3 and 4 in the GENERATE range; the segment's four nodes (segments are not rewritten:
+  // their nodes are kept, and each is reported; its set ID 7 is no node).
+  ASSERT_EQ(report.unmapped.size(), 6u);
+  std::map<std::string, std::set<Id>> unmapped;
+  for (const auto& u : report.unmapped) unmapped[u.keyword].insert(u.node);
+  EXPECT_EQ(unmapped["*SET_SHELL_LIST_GENERATE"], (std::set<Id>{3, 4}));
+  EXPECT_EQ(unmapped["*SET_SEGMENT"], (std::set<Id>{1, 2, 4, 5}));
 
   std::vector<Id> members = integersAfter(block(model, "*SET_SHELL_LIST").text, 2);
   std::sort(members.begin(), members.end());

@@ -75,14 +75,16 @@
 //   GENERATE, SPC1 THRU or *NSET GENERATE covering an old node; a new ID wider than its fixed
 //   field; a tab-expanded Nastran field), and any integer equal to an old node ID in keywords
 //   that may name nodes but are not understood field by field (LS-DYNA keywords starting with
-//   *ELEMENT_, *CONSTRAINED_, *BOUNDARY_, *LOAD_, *INITIAL_, *SET_NODE, *DATABASE_HISTORY_ or
+//   *ELEMENT_, *CONSTRAINED_, *BOUNDARY_, *LOAD_, *INITIAL_, *SET_NODE, *SET_SEGMENT (after its
+//   first card, or two with _TITLE: a segment's nodes are not rewritten), *DATABASE_HISTORY_ or
 //   containing _NODE, except those naming sets, parts or contacts: a name (without _TITLE or
-//   _ID) ending in _SET or holding _SET_, ending in _RIGID, *CONTACT_..., *CONSTRAINED_RIGID_
-//   BODIES and the shell keywords read for their shell IDs; Nastran cards starting with C or R,
-//   MPC, ASET, OMIT, SUPORT, FORCE1/2, MOMENT1/2, TEMP; Abaqus *EQUATION, *MPC, *INITIAL
-//   CONDITIONS, *KINEMATIC COUPLING) is listed in UnmappedReference and its node is kept (detached
-//   from the new mesh), never dropped. Such a scan cannot tell a node ID from another number that
-//   happens to be equal, so it may list false alarms; it never changes the deck.
+//   _ID) ending in _SET, _GENERAL or _ADD or holding _SET_, ending in _RIGID, *CONTACT_...,
+//   *CONSTRAINED_RIGID_BODIES and the shell keywords read for their shell IDs; Nastran cards
+//   starting with C or R, MPC, ASET, OMIT, SUPORT, FORCE1/2, MOMENT1/2, TEMP; Abaqus *EQUATION,
+//   *MPC, *INITIAL CONDITIONS, *KINEMATIC COUPLING) is listed in UnmappedReference and its node is
+//   kept (detached from the new mesh), never dropped. Such a scan cannot tell a node ID from
+//   another number that happens to be equal, so it may list false alarms; it never changes the
+//   deck.
 #pragma once
 
 #include <cstddef>

@@ -67,10 +67,10 @@ constexpr KeywordSpec kElementKeywords[] = {
 };
 
 /// Keywords not read field by field whose data may still name nodes: element, constraint,
-/// boundary, load, initial-condition, node-set and history keywords and any keyword with "_NODE"
-/// in its name, except those whose option says they name sets, parts or contacts instead (a
-/// name ending in _SET or holding _SET_, rigid-part motions, *CONTACT_..., *CONSTRAINED_RIGID_
-/// BODIES).
+/// boundary, load, initial-condition, node-set, segment-set and history keywords and any keyword
+/// with "_NODE" in its name, except those whose option says they name sets, parts or contacts
+/// instead (a name ending in _SET or holding _SET_, rigid-part motions, *CONTACT_...,
+/// *CONSTRAINED_RIGID_BODIES, *SET_SEGMENT_GENERAL and _ADD).
 bool mayNameNodes(std::string_view name) {
   std::string_view base = name;
   for (std::string_view suffix : {std::string_view("_TITLE"), std::string_view("_ID")})
@@ -80,11 +80,12 @@ bool mayNameNodes(std::string_view name) {
     return base.size() >= suffix.size() && base.substr(base.size() - suffix.size()) == suffix;
   };
   if (endsWith("_SET") || base.find("_SET_") != std::string_view::npos || endsWith("_RIGID") ||
-      base.substr(0, 8) == "*CONTACT" || base.substr(0, 26) == "*CONSTRAINED_RIGID_BODIES")
+      base.substr(0, 8) == "*CONTACT" || base.substr(0, 26) == "*CONSTRAINED_RIGID_BODIES" ||
+      endsWith("_GENERAL") || endsWith("_ADD"))
     return false;
   static constexpr std::string_view kPrefixes[] = {
-      "*ELEMENT_", "*CONSTRAINED_", "*BOUNDARY_",        "*LOAD_",
-      "*INITIAL_", "*SET_NODE",     "*DATABASE_HISTORY_"};
+      "*ELEMENT_", "*CONSTRAINED_", "*BOUNDARY_",   "*LOAD_",
+      "*INITIAL_", "*SET_NODE",     "*SET_SEGMENT", "*DATABASE_HISTORY_"};
   for (std::string_view prefix : kPrefixes)
     if (name.substr(0, prefix.size()) == prefix) return true;
   return name.find("_NODE") != std::string_view::npos;
@@ -230,9 +231,18 @@ void scanLsDynaBlock(std::string_view text, CardFormat deckFormat, const Referen
   // Keywords read for their shell IDs name no nodes.
   if (findSpec(kElementKeywords, keyword.name) || !mayNameNodes(keyword.name)) return;
   const bool element = keyword.name.compare(0, 9, "*ELEMENT_") == 0;
+  // A segment set's first card (and its title card) holds its ID and attributes, no node.
+  const std::string_view name = keyword.name;
+  int headerCards = name.compare(0, 12, "*SET_SEGMENT") == 0
+                        ? (name.size() > 6 && name.substr(name.size() - 6) == "_TITLE" ? 2 : 1)
+                        : 0;
   while (cursor.next()) {
     const std::string_view line = cursor.line();
     if (lsdyna::isCommentLine(line) || lsdyna::isKeywordLine(line)) continue;
+    if (headerCards > 0) {
+      --headerCards;
+      continue;
+    }
     // The first field of an element card is the element's own ID.
     sink.scanSuspects(line, cursor.lineNumber(), element ? 1 : 0, keyword.name);
   }
