@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "geometry/plane_basis.h"
 #include "optimize/chord_error.h"
 #include "optimize/face_score.h"
 #include "optimize/mesh_topology.h"
@@ -149,13 +150,6 @@ std::vector<Face> splitFarTriangles(QuadMesh& mesh, const ReferenceSurface& orig
       result.push_back({t[std::size_t(c)], t[std::size_t((c + 1) % 3)], middle, kNoCorner});
   }
   return result;
-}
-
-/// A basis (u, w) of the plane normal to the unit vector `normal`.
-std::pair<Vec3, Vec3> planeBasis(const Vec3& normal) {
-  const Vec3 axis = std::abs(normal[0]) < 0.9 ? Vec3{1.0, 0.0, 0.0} : Vec3{0.0, 1.0, 0.0};
-  const Vec3 u = normalized(cross(normal, axis));
-  return {u, cross(normal, u)};
 }
 
 /// Twice the signed area of the triangle (a, b, c) in the plane.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/plane_basis.h"
 #include "voxremesh/quality.h"
 #include "voxremesh/reference_surface.h"
 #include "voxremesh/sheets.h"
@@ -54,12 +55,12 @@ std::uint64_t ChannelWidth::cellKey(std::int64_t i, std::int64_t j, std::int64_t
   return wrap(i) << 42 | wrap(j) << 21 | wrap(k);
 }
 
+std::int64_t ChannelWidth::cellIndex(double coordinate) const {
+  return static_cast<std::int64_t>(std::clamp(std::floor(coordinate / cell_), -1e15, 1e15));
+}
+
 std::uint64_t ChannelWidth::cellKey(const Vec3& p) const {
-  const auto index = [this](double v) {
-    const double c = std::floor(v / cell_);
-    return static_cast<std::int64_t>(std::clamp(c, -1e15, 1e15));
-  };
-  return cellKey(index(p[0]), index(p[1]), index(p[2]));
+  return cellKey(cellIndex(p[0]), cellIndex(p[1]), cellIndex(p[2]));
 }
 
 std::vector<std::uint32_t> ChannelWidth::segmentsNear(const Vec3& p, double reach) const {
@@ -68,8 +69,8 @@ std::vector<std::uint32_t> ChannelWidth::segmentsNear(const Vec3& p, double reac
   const double margin = reach + 0.25 * cell_;
   std::array<std::int64_t, 3> lo{}, hi{};
   for (std::size_t d = 0; d < 3; ++d) {
-    lo[d] = static_cast<std::int64_t>(std::clamp(std::floor((p[d] - margin) / cell_), -1e15, 1e15));
-    hi[d] = static_cast<std::int64_t>(std::clamp(std::floor((p[d] + margin) / cell_), -1e15, 1e15));
+    lo[d] = cellIndex(p[d] - margin);
+    hi[d] = cellIndex(p[d] + margin);
   }
   for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
     for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
@@ -100,13 +101,7 @@ double ChannelWidth::at(const Vec3& point, const Vec3& normal) const {
   double radius = clearance(point, near);
   if (!(radius < reach)) return cap_;
   // The plane the centre moves in: normal to `normal` (any plane when it is zero).
-  const Vec3 n = norm(normal) > 0.0 ? normalized(normal) : Vec3{0.0, 0.0, 1.0};
-  const int least = std::abs(n[0]) <= std::abs(n[1]) && std::abs(n[0]) <= std::abs(n[2])
-                        ? 0
-                        : (std::abs(n[1]) <= std::abs(n[2]) ? 1 : 2);
-  Vec3 axis{0.0, 0.0, 0.0};
-  axis[std::size_t(least)] = 1.0;
-  const Vec3 u = normalized(cross(n, axis)), v = cross(n, u);
+  const auto [u, v] = planeBasis(norm(normal) > 0.0 ? normalized(normal) : Vec3{0.0, 0.0, 1.0});
   Vec3 centre = point;
   double step = std::max(radius, kStepTolerance * cap_);
   for (int s = 0; s < kMaxSearchSteps && step >= kStepTolerance * cap_; ++s) {

@@ -34,6 +34,8 @@ class ChannelWidth {
   std::vector<std::uint32_t> segmentsNear(const geom::Vec3& p, double reach) const;
   /// The distance of `p` to the nearest of the segments `near`, at most half the cap.
   double clearance(const geom::Vec3& p, const std::vector<std::uint32_t>& near) const;
+  /// The grid cell index of a coordinate (clamped for huge ones).
+  std::int64_t cellIndex(double coordinate) const;
   std::uint64_t cellKey(const geom::Vec3& p) const;
   std::uint64_t cellKey(std::int64_t i, std::int64_t j, std::int64_t k) const;
 
