@@ -67,7 +67,8 @@ struct Trial {
   std::uint32_t stamp = 0;
   bool converged = false;  ///< a whole sweep moved no point
   opt::Score score;
-  double chord = 0.0;  ///< chordError of its faces
+  double chord = 0.0;     ///< chordError of its faces
+  std::size_t folds = 0;  ///< faces of `mesh` folded against their neighbours (foldedFaces)
 };
 template <class T>
 void sortUnique(std::vector<T>& v) {
@@ -92,6 +93,12 @@ Neighbourhood neighbourhoodOf(const QuadMesh& mesh, const opt::Topology& t, std:
       n.allPoints.push_back(mesh.faces[f][std::size_t(j)]);
   sortUnique(n.allPoints);
   return n;
+}
+
+/// The number of faces of the mesh folded against their neighbours (quality.h, foldedFaces).
+std::size_t foldedCount(const QuadMesh& mesh) {
+  const std::vector<std::uint8_t> folded = foldedFaces(mesh);
+  return std::size_t(std::count(folded.begin(), folded.end(), std::uint8_t(1)));
 }
 
 opt::Score scoreOf(const QuadMesh& mesh, const QualitySettings& settings) {
@@ -316,6 +323,7 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
                             searchTrial(trial, original, settings, fixedOnCurve, curves,
                                         sweeps - 1);
                             trial.chord = opt::chordError(trial.mesh, trial.mesh.faces, original);
+                            trial.folds = foldedCount(trial.mesh);
                           }
                         });
       // Only tries whose faces stay as close to the original as half the distance limit, or as
@@ -324,10 +332,14 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
       for (const std::uint32_t g : n.faces) present.push_back(mesh.faces[g]);
       const double allowed = std::max(opt::chordError(mesh, present, original),
                                       0.5 * settings.maxDistanceFactor * settings.targetSize);
+      // Nor may a try fold a face that was not folded (a flipped face can pass every criterion
+      // of its own).
+      const std::size_t foldsBefore = foldedCount(buildTrial(mesh, t, n, Edit{}).mesh);
       std::sort(order.begin(), order.end());
       const Trial* best = nullptr;
       for (const std::size_t i : order)
-        if (trials[i].chord <= allowed && (!best || trials[i].score.betterThan(best->score)))
+        if (trials[i].chord <= allowed && trials[i].folds <= foldsBefore &&
+            (!best || trials[i].score.betterThan(best->score)))
           best = &trials[i];
       if (!best || !(best->score.failures < before.failures)) continue;
       applyTrial(mesh, n, *best, deleted);
