@@ -952,3 +952,34 @@ TEST(RelaxMesh, CurveEndsDoNotSlideTowardsCornersOffTheirCurve) {
 }
 
 }  // namespace
+
+// A flipped face can pass every criterion of its own: the point search and the edge rotation must
+// not fold faces while they repair failing ones (jittered grids, some faces folded to begin with).
+TEST(ImproveFailingElements, NeverFoldsMoreFacesThanItFound) {
+  const ReferenceSurface plane(voxremesh::test::unitGrid(10));
+  voxremesh::QualitySettings settings;
+  settings.targetSize = 1.0;
+  std::size_t moved = 0;
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    QuadMesh mesh = voxremesh::test::unitGrid(10);
+    voxremesh::test::jitterInnerPoints(mesh, 10, seed, 0.6);
+    const std::size_t before = voxremesh::test::foldedCount(mesh);
+    moved += voxremesh::improveFailingElements(mesh, plane, settings, 5);
+    EXPECT_LE(voxremesh::test::foldedCount(mesh), before) << "seed " << seed;
+  }
+  EXPECT_GT(moved, 0u);
+}
+
+TEST(RotateFailingEdges, NeverFoldsMoreFacesThanItFound) {
+  voxremesh::QualitySettings settings;
+  settings.targetSize = 1.0;
+  std::size_t rotated = 0;
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    QuadMesh mesh = voxremesh::test::unitGrid(10);
+    voxremesh::test::jitterInnerPoints(mesh, 10, seed, 0.6);
+    const std::size_t before = voxremesh::test::foldedCount(mesh);
+    rotated += voxremesh::rotateFailingEdges(mesh, settings);
+    EXPECT_LE(voxremesh::test::foldedCount(mesh), before) << "seed " << seed;
+  }
+  EXPECT_GT(rotated, 0u);
+}

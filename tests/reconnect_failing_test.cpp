@@ -189,36 +189,15 @@ TEST(ReconnectFailingFaces, RefusesBadArguments) {
   EXPECT_THROW(voxremesh::reconnectFailingFaces(mesh, plane, settings), std::invalid_argument);
 }
 
-/// A 10 x 10 grid whose inner points are pushed by up to `amount` in x and y (a fixed
-/// pseudo-random pattern per seed), some far enough to fold faces.
-QuadMesh jitteredGrid(unsigned seed, double amount) {
-  QuadMesh mesh = fixedBoundaryGrid(10);
-  unsigned state = seed;
-  auto next = [&state] {
-    state = state * 1664525u + 1013904223u;
-    return double(state >> 8) / double(1u << 24) - 0.5;
-  };
-  for (std::size_t v = 0; v < mesh.points.size(); ++v)
-    if (mesh.constraints[v].role == PointRole::Free) {
-      mesh.points[v][0] += 2.0 * amount * next();
-      mesh.points[v][1] += 2.0 * amount * next();
-    }
-  return mesh;
-}
-
-std::size_t foldedCount(const QuadMesh& mesh) {
-  const std::vector<std::uint8_t> folded = voxremesh::foldedFaces(mesh);
-  return std::size_t(std::count(folded.begin(), folded.end(), std::uint8_t(1)));
-}
-
 TEST(ReconnectFailingFaces, NeverFoldsMoreFacesThanItFound) {
   const ReferenceSurface plane(fixedBoundaryGrid(10));
   std::size_t changed = 0;
   for (unsigned seed = 1; seed <= 12; ++seed) {
-    QuadMesh mesh = jitteredGrid(seed, 0.6);
-    const std::size_t before = foldedCount(mesh);
+    QuadMesh mesh = fixedBoundaryGrid(10);
+    voxremesh::test::jitterInnerPoints(mesh, 10, seed, 0.6);
+    const std::size_t before = voxremesh::test::foldedCount(mesh);
     changed += voxremesh::reconnectFailingFaces(mesh, plane, unitCriteria());
-    EXPECT_LE(foldedCount(mesh), before) << "seed " << seed;
+    EXPECT_LE(voxremesh::test::foldedCount(mesh), before) << "seed " << seed;
     EXPECT_TRUE(eulerAndOriented(mesh).second) << "seed " << seed;
   }
   EXPECT_GT(changed, 0u);  // the step did work on these meshes

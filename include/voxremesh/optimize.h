@@ -132,7 +132,9 @@ std::size_t mergeTrianglePairs(QuadMesh& mesh, const QualitySettings& settings);
 /// curve points kept on their curves, Corners and Junction points fixed. A step is taken when the
 /// faces around the point then fail fewer criteria (quality.h, under `settings`), or as many with
 /// a smaller penalty: the squares of how far each metric lies beyond a soft limit a margin inside
-/// its criterion (e.g. 55 .. 125 degrees for quad angles, 0.7 for the Jacobian ratio). Points that
+/// its criterion (e.g. 55 .. 125 degrees for quad angles, 0.7 for the Jacobian ratio), and no
+/// more of those faces point more than 120 degrees away from that plane's normal than before (a
+/// folded face can pass every criterion of its own). Points that
 /// share no face are independent: they are split greedily in index order into classes, each class
 /// searched in parallel and the classes one after another, so the result does not depend on the
 /// thread count. Repeats up to `sweeps` times over the points of the faces still failing, or until
@@ -175,9 +177,10 @@ std::size_t splitLongEdges(QuadMesh& mesh, double maxLength, const ReferenceSurf
 /// as before) whose faces score better: fewer failed criteria, else a smaller penalty (the one
 /// improveFailingElements uses). An edge between two constrained points (it may run along a
 /// curve) is not removed, a diagonal between two constrained points or along an existing edge is
-/// not made, and neither end of the removed edge may be left in fewer than 3 faces (2 on the
-/// boundary). Rounds repeat until none rotates or `maxRounds` is reached. Serial, deterministic;
-/// points do not move.
+/// not made, neither end of the removed edge may be left in fewer than 3 faces (2 on the
+/// boundary), and no new face may point more than 120 degrees away from a face across one of its
+/// edges (a fold, quality.h). Rounds repeat until none rotates or `maxRounds` is reached. Serial,
+/// deterministic; points do not move.
 /// @return the number of edges rotated
 /// Throws std::invalid_argument for settings.targetSize <= 0, negative rounds or a bad mesh;
 /// SettingError for bad settings.
@@ -256,9 +259,9 @@ std::size_t splitFailingQuads(QuadMesh& mesh, const QualitySettings& settings,
 /// neighbourhood's faces were, take part (measured at face centres and edge midpoints), and only
 /// those with no more folded faces (foldedFaces, quality.h) than the neighbourhood had: a flipped
 /// face can pass every criterion of its own. The one whose neighbourhood then scores best is kept
-/// when it fails fewer criteria than the neighbourhood did. Neighbourhoods changed in a round do not overlap; rounds repeat until none
-/// changes or `maxRounds` is reached. The tries of one face run in parallel and are chosen in
-/// order: the result does not depend on the thread count.
+/// when it fails fewer criteria than the neighbourhood did. Neighbourhoods changed in a round do
+/// not overlap; rounds repeat until none changes or `maxRounds` is reached. The tries of one face
+/// run in parallel and are chosen in order: the result does not depend on the thread count.
 /// @return the number of neighbourhoods changed
 /// Throws std::invalid_argument for an empty surface, negative rounds or sweeps,
 /// settings.targetSize <= 0 or a bad mesh; SettingError for bad settings.

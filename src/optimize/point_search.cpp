@@ -30,17 +30,31 @@ bool scoresBetter(const QuadMesh& mesh, std::vector<std::uint32_t>& faces,
   return true;
 }
 
+/// The normal of a face, not normalised (elementNormal).
+Vec3 faceNormal(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face) {
+  const bool triangle = cornerCount(face) == 3;
+  const auto& p = mesh.points;
+  return elementNormal(p[face[0]], p[face[1]], p[face[2]], p[face[triangle ? 2 : 3]], triangle);
+}
+
+/// The number of `faces` whose normal points more than 120 degrees (the fold criterion's angle,
+/// quality.h) away from `normal` (unit).
+std::size_t facesAgainst(const QuadMesh& mesh, const std::vector<std::uint32_t>& faces,
+                         const Vec3& normal) {
+  constexpr double kFoldCosine = -0.5;
+  return std::size_t(std::count_if(faces.begin(), faces.end(), [&](std::uint32_t f) {
+    return dot(normalized(faceNormal(mesh, mesh.faces[f])), normal) < kFoldCosine;
+  }));
+}
+
 /// A unit normal of the surface at v (the sum of its faces' normals) and the mean length of its
 /// edges.
 void localFrame(const QuadMesh& mesh, const Topology& t, CornerIndex v, Vec3& normal,
                 double& edge) {
   const auto& p = mesh.points;
   Vec3 sum{0.0, 0.0, 0.0};
-  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f) {
-    const auto& face = mesh.faces[*f];
-    sum = sum + (cornerCount(face) == 3 ? cross(p[face[1]] - p[face[0]], p[face[2]] - p[face[0]])
-                                        : cross(p[face[2]] - p[face[0]], p[face[3]] - p[face[1]]));
-  }
+  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f)
+    sum = sum + faceNormal(mesh, mesh.faces[*f]);
   normal = normalized(sum);
   edge = 0.0;
   for (const std::uint32_t* w = t.nbrsBegin(v); w != t.nbrsEnd(v); ++w)
@@ -152,6 +166,12 @@ bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& ori
   std::vector<std::uint32_t> faces;
   for (const auto& entry : scored) faces.push_back(entry.second);
   if (best.failures == 0 && best.penalty == 0.0) return false;
+  // No try may turn a face round v against the surface there (a fold, which can pass every
+  // criterion of its own).
+  Vec3 normal;
+  double unused = 0.0;
+  localFrame(mesh, t, v, normal, unused);
+  const std::size_t againstBefore = facesAgainst(mesh, faces, normal);
   Vec3 position = start;
   for (double step = 0.25 * edge; step > smallestStep * edge; step *= 0.5) {
     bool improved = true;
@@ -161,7 +181,8 @@ bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& ori
         mesh.points[v] = place(position + direction * step);
         if (onFixedPoint(mesh.points[v])) continue;
         Score score;
-        if (scoresBetter(mesh, faces, settings, best, score)) {
+        if (scoresBetter(mesh, faces, settings, best, score) &&
+            facesAgainst(mesh, faces, normal) <= againstBefore) {
           best = score;
           position = mesh.points[v];
           improved = true;
