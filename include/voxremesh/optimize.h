@@ -133,7 +133,7 @@ std::size_t mergeTrianglePairs(QuadMesh& mesh, const QualitySettings& settings);
 /// faces around the point then fail fewer criteria (quality.h, under `settings`), or as many with
 /// a smaller penalty: the squares of how far each metric lies beyond a soft limit a margin inside
 /// its criterion (e.g. 55 .. 125 degrees for quad angles, 0.7 for the Jacobian ratio), and no
-/// more of those faces point more than 120 degrees away from that plane's normal than before (a
+/// more of the faces touching those faces are folded than before (foldedFaces, quality.h: a
 /// folded face can pass every criterion of its own). Points that
 /// share no face are independent: they are split greedily in index order into classes, each class
 /// searched in parallel and the classes one after another, so the result does not depend on the

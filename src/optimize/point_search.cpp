@@ -4,6 +4,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "voxremesh/quality.h"
 
 namespace voxremesh::opt {
 
@@ -30,21 +34,49 @@ bool scoresBetter(const QuadMesh& mesh, std::vector<std::uint32_t>& faces,
   return true;
 }
 
-/// The normal of a face, not normalised (elementNormal).
-Vec3 faceNormal(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face) {
-  const bool triangle = cornerCount(face) == 3;
-  const auto& p = mesh.points;
-  return elementNormal(p[face[0]], p[face[1]], p[face[2]], p[face[triangle ? 2 : 3]], triangle);
+/// The faces touching a corner of a face round v, as a mesh of their own (points renumbered, no
+/// constraints), and v's index in it: enough to see whether a move of v folds a face (foldedFaces,
+/// quality.h), since only faces round v change and only their neighbours see it.
+struct LocalRing {
+  QuadMesh mesh;
+  CornerIndex v = 0;
+  std::vector<CornerIndex> global;  ///< per local point, its index in the whole mesh, ascending
+};
+
+LocalRing ringAround(const QuadMesh& mesh, const Topology& t, CornerIndex v) {
+  std::vector<std::uint32_t> faces;
+  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f)
+    for (int k = 0; k < cornerCount(mesh.faces[*f]); ++k) {
+      const CornerIndex p = mesh.faces[*f][std::size_t(k)];
+      faces.insert(faces.end(), t.facesBegin(p), t.facesEnd(p));
+    }
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  LocalRing ring;
+  for (const std::uint32_t f : faces)
+    for (int k = 0; k < cornerCount(mesh.faces[f]); ++k)
+      ring.global.push_back(mesh.faces[f][std::size_t(k)]);
+  std::sort(ring.global.begin(), ring.global.end());
+  ring.global.erase(std::unique(ring.global.begin(), ring.global.end()), ring.global.end());
+  const auto local = [&](CornerIndex p) {
+    return CornerIndex(std::lower_bound(ring.global.begin(), ring.global.end(), p) -
+                       ring.global.begin());
+  };
+  for (const CornerIndex p : ring.global) ring.mesh.points.push_back(mesh.points[p]);
+  for (const std::uint32_t f : faces) {
+    auto face = mesh.faces[f];
+    for (int k = 0; k < cornerCount(face); ++k) face[std::size_t(k)] = local(face[std::size_t(k)]);
+    ring.mesh.faces.push_back(face);
+  }
+  ring.v = local(v);
+  return ring;
 }
 
-/// The number of `faces` whose normal points more than 120 degrees (the fold criterion's angle,
-/// quality.h) away from `normal` (unit).
-std::size_t facesAgainst(const QuadMesh& mesh, const std::vector<std::uint32_t>& faces,
-                         const Vec3& normal) {
-  constexpr double kFoldCosine = -0.5;
-  return std::size_t(std::count_if(faces.begin(), faces.end(), [&](std::uint32_t f) {
-    return dot(normalized(faceNormal(mesh, mesh.faces[f])), normal) < kFoldCosine;
-  }));
+/// The number of faces of the ring folded (foldedFaces) with v at `position`.
+std::size_t foldedWithVAt(LocalRing& ring, const Vec3& position) {
+  ring.mesh.points[ring.v] = position;
+  const std::vector<std::uint8_t> folded = foldedFaces(ring.mesh);
+  return std::size_t(std::count(folded.begin(), folded.end(), std::uint8_t(1)));
 }
 
 /// A unit normal of the surface at v (the sum of its faces' normals) and the mean length of its
@@ -53,8 +85,11 @@ void localFrame(const QuadMesh& mesh, const Topology& t, CornerIndex v, Vec3& no
                 double& edge) {
   const auto& p = mesh.points;
   Vec3 sum{0.0, 0.0, 0.0};
-  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f)
-    sum = sum + faceNormal(mesh, mesh.faces[*f]);
+  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f) {
+    const auto& face = mesh.faces[*f];
+    sum = sum + (cornerCount(face) == 3 ? cross(p[face[1]] - p[face[0]], p[face[2]] - p[face[0]])
+                                        : cross(p[face[2]] - p[face[0]], p[face[3]] - p[face[1]]));
+  }
   normal = normalized(sum);
   edge = 0.0;
   for (const std::uint32_t* w = t.nbrsBegin(v); w != t.nbrsEnd(v); ++w)
@@ -166,12 +201,9 @@ bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& ori
   std::vector<std::uint32_t> faces;
   for (const auto& entry : scored) faces.push_back(entry.second);
   if (best.failures == 0 && best.penalty == 0.0) return false;
-  // No try may turn a face round v against the surface there (a fold, which can pass every
-  // criterion of its own).
-  Vec3 normal;
-  double unused = 0.0;
-  localFrame(mesh, t, v, normal, unused);
-  const std::size_t againstBefore = facesAgainst(mesh, faces, normal);
+  // No try may fold a face (foldedFaces), which can pass every criterion of its own.
+  LocalRing ring = ringAround(mesh, t, v);
+  const std::size_t foldedBefore = foldedWithVAt(ring, start);
   Vec3 position = start;
   for (double step = 0.25 * edge; step > smallestStep * edge; step *= 0.5) {
     bool improved = true;
@@ -182,7 +214,7 @@ bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& ori
         if (onFixedPoint(mesh.points[v])) continue;
         Score score;
         if (scoresBetter(mesh, faces, settings, best, score) &&
-            facesAgainst(mesh, faces, normal) <= againstBefore) {
+            foldedWithVAt(ring, mesh.points[v]) <= foldedBefore) {
           best = score;
           position = mesh.points[v];
           improved = true;
