@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "voxremesh/quality.h"
@@ -201,9 +202,17 @@ bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& ori
   std::vector<std::uint32_t> faces;
   for (const auto& entry : scored) faces.push_back(entry.second);
   if (best.failures == 0 && best.penalty == 0.0) return false;
-  // No try may fold a face (foldedFaces), which can pass every criterion of its own.
-  LocalRing ring = ringAround(mesh, t, v);
-  const std::size_t foldedBefore = foldedWithVAt(ring, start);
+  // No try may fold a face (foldedFaces), which can pass every criterion of its own. The ring is
+  // built when a try first scores better (most searches end without one).
+  std::optional<LocalRing> ring;
+  std::size_t foldedBefore = 0;
+  const auto foldsNoMore = [&](const Vec3& at) {
+    if (!ring) {
+      ring = ringAround(mesh, t, v);
+      foldedBefore = foldedWithVAt(*ring, start);
+    }
+    return foldedWithVAt(*ring, at) <= foldedBefore;
+  };
   Vec3 position = start;
   for (double step = 0.25 * edge; step > smallestStep * edge; step *= 0.5) {
     bool improved = true;
@@ -213,8 +222,7 @@ bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& ori
         mesh.points[v] = place(position + direction * step);
         if (onFixedPoint(mesh.points[v])) continue;
         Score score;
-        if (scoresBetter(mesh, faces, settings, best, score) &&
-            foldedWithVAt(ring, mesh.points[v]) <= foldedBefore) {
+        if (scoresBetter(mesh, faces, settings, best, score) && foldsNoMore(mesh.points[v])) {
           best = score;
           position = mesh.points[v];
           improved = true;

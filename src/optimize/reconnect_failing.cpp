@@ -332,13 +332,18 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
       for (const std::uint32_t g : n.faces) present.push_back(mesh.faces[g]);
       const double allowed = std::max(opt::chordError(mesh, present, original),
                                       0.5 * settings.maxDistanceFactor * settings.targetSize);
-      // Nor may a try fold a face that was not folded (a flipped face can pass every criterion
-      // of its own).
-      const std::size_t foldsBefore = foldedCount(buildTrial(mesh, t, n, Edit{}).mesh);
+      // Nor may a try fold more faces than the neighbourhood had folded (a flipped face can pass
+      // every criterion of its own); those are counted only when a try has a fold.
+      std::optional<std::size_t> foldsBefore;
+      const auto foldsAllowed = [&](const Trial& trial) {
+        if (trial.folds == 0) return true;
+        if (!foldsBefore) foldsBefore = foldedCount(buildTrial(mesh, t, n, Edit{}).mesh);
+        return trial.folds <= *foldsBefore;
+      };
       std::sort(order.begin(), order.end());
       const Trial* best = nullptr;
       for (const std::size_t i : order)
-        if (trials[i].chord <= allowed && trials[i].folds <= foldsBefore &&
+        if (trials[i].chord <= allowed && foldsAllowed(trials[i]) &&
             (!best || trials[i].score.betterThan(best->score)))
           best = &trials[i];
       if (!best || !(best->score.failures < before.failures)) continue;
