@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -73,6 +75,50 @@ Json inspectJson(const fs::path& vdb) {
   const CliRun r = runCliSplit("inspect " + quoted(vdb) + " --json");
   EXPECT_EQ(r.exitCode, 0) << r.err;
   return parseJson(r.out);
+}
+
+// A little-endian field of a file's bytes.
+template <typename T>
+T fieldAt(const std::string& bytes, std::size_t at) {
+  T value{};
+  if (at + sizeof value <= bytes.size()) std::memcpy(&value, bytes.data() + at, sizeof value);
+  return value;
+}
+
+// Where the sdf grid of a voxremesh .vdb file keeps counts that OpenVDB 10 allocates or loops
+// over as stated (0 when the layout is not the expected one).
+struct SdfTreeCounts {
+  std::size_t rootCounts = 0;  // the root's tile count; its child count follows
+  std::size_t leafBlock = 0;   // the Int64 size of the first leaf's compressed values
+};
+
+SdfTreeCounts sdfTreeCounts(const std::string& bytes) {
+  // The grid descriptor: name, type, empty instance parent, then the grid's start, data-block
+  // start and end positions.
+  const std::string descriptor =
+      std::string("\x03\0\0\0sdf", 7) + std::string("\x10\0\0\0Tree_float_5_4_3\0\0\0\0", 24);
+  const std::size_t at = bytes.find(descriptor);
+  if (at == std::string::npos) return {};
+  const auto gridPos = fieldAt<std::int64_t>(bytes, at + descriptor.size());
+  const auto blockPos = fieldAt<std::int64_t>(bytes, at + descriptor.size() + 8);
+  // At the grid's start: compression flags, metadata, the transform (a UniformScaleMap: its name
+  // and five Vec3d), then the tree: a buffer count, the background, the tile and child counts.
+  const std::string map("\x0f\0\0\0UniformScaleMap", 19);
+  const std::size_t transform = bytes.find(map, static_cast<std::size_t>(gridPos));
+  if (transform == std::string::npos || transform > static_cast<std::size_t>(blockPos)) return {};
+  SdfTreeCounts counts;
+  counts.rootCounts = transform + map.size() + 5 * 24 + 4 + 4;
+  // The data blocks start with the first leaf's: its value mask, a byte saying what stands for
+  // its inactive values (2, 4, 5: one or two values follow; 3, 4, 5: a selection mask), then the
+  // compressed values.
+  const std::size_t metadataAt = static_cast<std::size_t>(blockPos) + 64;
+  const int metadata = metadataAt < bytes.size() ? bytes[metadataAt] : -1;
+  counts.leafBlock = metadataAt + 1 +
+                     (metadata == 2 || metadata == 4 ? 4
+                      : metadata == 5                ? 8
+                                                     : 0) +
+                     (metadata >= 3 && metadata <= 5 ? 64 : 0);
+  return counts;
 }
 
 }  // namespace
@@ -309,7 +355,8 @@ TEST(CliVolume, DamagedLengthsInAVdbAreRefusedBeforeOpenVdbAllocatesThem) {
   bytes.replace(name, 4, std::string("\xf0\xff\xff\xff", 4));
   writeText(dir / "damaged.vdb", bytes);
   // Also the fuzzer's findings (tests/fuzz/findings: a 2 GB metadata name in a second grid, a
-  // garbage format version whose OpenVDB read took 4 GB or hung building its message).
+  // garbage format version whose OpenVDB read took 4 GB or hung building its message, a leaf's
+  // blosc block said to hold 70 TB, 4294967296 sheets).
   std::vector<fs::path> files = {dir / "damaged.vdb"};
   for (const auto& entry :
        fs::directory_iterator(fs::path(VOXREMESH_SOURCE_DIR) / "tests" / "fuzz" / "findings"))
@@ -335,6 +382,114 @@ TEST(CliVolume, DamagedLengthsInAVdbAreRefusedBeforeOpenVdbAllocatesThem) {
       ": byte offset " + std::to_string(name) +
           ": the length of the name of grid 0 is 4294967280 bytes"));
   EXPECT_FALSE(fs::exists(dir / "x.obj"));
+}
+
+TEST(CliVolume, DamagedTreeCountsInAVdbAreRefusedBeforeOpenVdbAllocatesThem) {
+  // OpenVDB allocates the size a compressed block of a tree states (a fuzzed file asked
+  // bloscFromStream for 70 TB), reads a block stored uncompressed before checking its size, and
+  // loops over the tiles and children the root states. Each is now checked against the grid's
+  // bytes first: refused within 600 MB of address space, naming the byte offset, and nothing is
+  // written.
+  const fs::path dir = scratchDir("cli-volume-damaged-tree");
+  const std::string bytes = readText(sampleVolume());
+  const SdfTreeCounts sdf = sdfTreeCounts(bytes);
+  ASSERT_NE(sdf.rootCounts, 0u) << "the sdf grid's layout was not found";
+  ASSERT_EQ(fieldAt<std::int32_t>(bytes, sdf.rootCounts - 8), 1);  // the tree's buffer count
+  ASSERT_GE(fieldAt<std::uint32_t>(bytes, sdf.rootCounts + 4), 1u);
+  const auto blockBytes = fieldAt<std::int64_t>(bytes, sdf.leafBlock);
+  ASSERT_GT(blockBytes, 16);  // a blosc block of at most 512 floats
+  ASSERT_LT(blockBytes, 2100);
+
+  struct Damage {
+    const char* file;
+    std::size_t at;
+    std::string value;  // the bytes written at `at`
+    std::string message;
+  };
+  const std::int64_t huge = 70000000000000, minusHuge = -huge, minus4000 = -4000;
+  const std::string allOnes("\xff\xff\xff\xff", 4);
+  const std::vector<Damage> damages = {
+      {"leaf_block.vdb", sdf.leafBlock, std::string(reinterpret_cast<const char*>(&huge), 8),
+       " claims 70000000000000 bytes, but only "},
+      {"leaf_block_raw.vdb", sdf.leafBlock,
+       std::string(reinterpret_cast<const char*>(&minusHuge), 8),
+       " claims 70000000000000 bytes, but only "},
+      // Stored uncompressed, larger than its values: OpenVDB 10 reads it into their buffer.
+      {"leaf_block_raw_4000.vdb", sdf.leafBlock,
+       std::string(reinterpret_cast<const char*>(&minus4000), 8),
+       " claims 4000 bytes, but its values take "},
+      {"root_tiles.vdb", sdf.rootCounts, allOnes, " claims 4294967295 tiles of 17 bytes each"},
+      {"root_children.vdb", sdf.rootCounts + 4, allOnes,
+       " claims 4294967295 child nodes of at least 8205 bytes each"}};
+  for (const Damage& damage : damages) {
+    std::string damaged = bytes;
+    damaged.replace(damage.at, damage.value.size(), damage.value);
+    const fs::path file = dir / damage.file;
+    writeText(file, damaged);
+    for (const std::string& command :
+         {"inspect " + quoted(file), "extract " + quoted(file) + " -o " + quoted(dir / "x.obj")}) {
+      const voxremesh::test::CliResult run =
+          runShell(voxremesh::test::addressSpaceLimit(600000000) + std::string(VOXREMESH_CLI) +
+                   " " + command + " 2>&1");
+      EXPECT_EQ(run.exitCode, 1) << command << ": " << run.output;
+      EXPECT_TRUE(
+          contains(run.output, file.string() + ": byte offset " + std::to_string(damage.at) + ": "))
+          << run.output;
+      EXPECT_TRUE(contains(run.output, damage.message)) << run.output;
+      EXPECT_TRUE(contains(run.output, "a damaged .vdb file")) << run.output;
+    }
+  }
+  EXPECT_FALSE(fs::exists(dir / "x.obj"));
+}
+
+TEST(CliVolume, ASheetCountBeyondTheGridsIsRefusedBeforeItIsReserved) {
+  // readVolumes reserves a volume per sheet the file metadata states (fuzz_vdb: 4294967296
+  // sheets, a 32 GB reservation); three grids per sheet bound it before anything is read.
+  const fs::path dir = scratchDir("cli-volume-sheet-count");
+  std::string bytes = readText(sampleVolume());
+  const std::string entry("\x15\0\0\0voxremesh_sheet_count\x05\0\0\0int64\x08\0\0\0", 38);
+  const std::size_t at = bytes.find(entry);
+  ASSERT_NE(at, std::string::npos);
+  ASSERT_EQ(fieldAt<std::int64_t>(bytes, at + entry.size()), 1);
+  const std::int64_t sheets = std::int64_t{1} << 32;
+  bytes.replace(at + entry.size(), 8, std::string(reinterpret_cast<const char*>(&sheets), 8));
+  const fs::path file = dir / "sheets.vdb";
+  writeText(file, bytes);
+  const voxremesh::test::CliResult run =
+      runShell(voxremesh::test::addressSpaceLimit(600000000) + std::string(VOXREMESH_CLI) +
+               " inspect " + quoted(file) + " 2>&1");
+  EXPECT_EQ(run.exitCode, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, file.string() + ": byte offset " +
+                                       std::to_string(at + entry.size()) +
+                                       ": the file metadata voxremesh_sheet_count claims "
+                                       "4294967296 sheets, but the file holds 3 grids"))
+      << run.output;
+}
+
+TEST(CliVolume, VdbFilesOfOtherWritersPassTheLayoutCheck) {
+  // vdb_tool (Debian's libopenvdb-tools) writes level sets with each compression, as half floats,
+  // and a vector grid: the layout check walks their trees and lets them through to the grid
+  // lookup, which refuses them for want of voxremesh's grids. vdb_print reads voxremesh's file.
+  if (runShell("command -v vdb_tool >/dev/null && command -v vdb_print >/dev/null").exitCode != 0)
+    GTEST_SKIP() << "vdb_tool or vdb_print (libopenvdb-tools) not installed";
+  const fs::path dir = scratchDir("cli-volume-vdb-tool");
+  const std::vector<std::string> writes = {"codec=none",          "codec=zip", "codec=blosc",
+                                           "codec=active",        "bits=16",   "bits=16 codec=none",
+                                           "bits=16 codec=active"};
+  for (std::size_t k = 0; k <= writes.size(); ++k) {
+    const fs::path file = dir / ("sphere" + std::to_string(k) + ".vdb");
+    const std::string make = k < writes.size() ? "-sphere r=1.0 voxel=0.1 -write " + writes[k]
+                                               : "-sphere r=1.0 voxel=0.1 -grad -write";
+    ASSERT_EQ(runShell("vdb_tool -quiet " + make + " " + quoted(file)).exitCode, 0) << make;
+    const voxremesh::test::CliResult run =
+        runShell(std::string(VOXREMESH_CLI) + " inspect " + quoted(file) + " 2>&1");
+    EXPECT_EQ(run.exitCode, 1) << make << ": " << run.output;
+    EXPECT_TRUE(contains(run.output, "no grid named 'sdf'")) << make << ": " << run.output;
+    EXPECT_FALSE(contains(run.output, "byte offset")) << make << ": " << run.output;
+  }
+  const voxremesh::test::CliResult print = runShell("vdb_print -l " + quoted(sampleVolume()));
+  EXPECT_EQ(print.exitCode, 0) << print.output;
+  EXPECT_TRUE(contains(print.output, "Tree_float_5_4_3")) << print.output;
 }
 
 TEST(CliVolume, UsageErrorsExitWithTwo) {

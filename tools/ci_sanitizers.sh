@@ -3,9 +3,9 @@
 # libFuzzer harnesses with AddressSanitizer, UBSan (aborting on undefined behaviour) and coverage
 # instrumentation (-DVOXREMESH_FUZZ=ON, cmake/Fuzzing.cmake); the whole test suite runs under
 # them; then each harness fuzzes a scratch copy of its seeds for FUZZ_SECONDS (default 60).
-# fuzz_vdb only replays its seeds and findings: OpenVDB's bloscFromStream allocates the length a
-# damaged file states (70 TB seen), which the release build refuses as "out of memory" but which
-# AddressSanitizer aborts on (see the README's "Fuzzing" section).
+# fuzz_vdb only replays its seeds and findings: inside OpenVDB's reading of damaged compressed
+# payloads a leak piles up and a bool grid's byte other than 0 or 1 is undefined behaviour (see
+# the README's "Fuzzing" section).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root="$PWD"
