@@ -980,6 +980,14 @@ TEST(ImproveFailingElements, NeverFoldsMoreFacesThanItFound) {
             0u);
 }
 
+TEST(SplitFailingQuads, NeverFoldsMoreFacesThanItFound) {
+  voxremesh::QualitySettings settings;
+  settings.targetSize = 1.0;
+  EXPECT_GT(expectNoNewFolds(
+                [&](QuadMesh& mesh) { return voxremesh::splitFailingQuads(mesh, settings, 1.0); }),
+            0u);
+}
+
 TEST(RotateFailingEdges, NeverFoldsMoreFacesThanItFound) {
   voxremesh::QualitySettings settings;
   settings.targetSize = 1.0;

@@ -1,8 +1,9 @@
 // reconnectFailingFaces on flat grids with planted connectivity defects that no point move can
-// repair: a pair of quads cut along the wrong diagonal and a split point (a thin quad between two
-// valence-3 points). The step removes the failures, keeps the surface (every point on the plane,
-// the fixed boundary where it was), the Euler characteristic and the orientation, and gives the
-// same mesh for one and two threads.
+// repair: a pair of quads cut along the wrong diagonal, a split point (a thin quad between two
+// valence-3 points) and a doubled point (two sliver triangles between its copies). The step
+// removes the failures, keeps the surface (every point on the plane, the fixed boundary where it
+// was), the Euler characteristic and the orientation, and gives the same mesh for one and two
+// threads.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -104,6 +105,47 @@ QuadMesh splitPoint() {
       std::replace(face.begin(), face.end(), left, right);
   mesh.faces.push_back({left, id(3, 2), right, id(3, 4)});
   return mesh;
+}
+
+/// A 6 x 6 grid whose point (3, 3) is doubled: the two faces above it use a copy 0.05 higher, and
+/// two sliver triangles (left and right of the pair) fill the gap. Every other point is fixed.
+QuadMesh doubledPoint() {
+  constexpr int n = 6;
+  QuadMesh mesh = voxremesh::test::unitGrid(n);
+  auto id = [](int i, int j) { return CornerIndex(j * (n + 1) + i); };
+  const CornerIndex low = id(3, 3);
+  for (CornerIndex v = 0; v < mesh.points.size(); ++v)
+    if (v != low) mesh.constraints[v] = {PointRole::Corner, voxremesh::kNoCurve};
+  const CornerIndex high = CornerIndex(mesh.points.size());
+  mesh.points.push_back({3.0, 3.05, 0.0});
+  mesh.constraints.push_back({});
+  for (auto& face : mesh.faces)
+    if (face[0] == id(2, 3) || face[0] == id(3, 3))  // the two faces above the point
+      std::replace(face.begin(), face.end(), low, high);
+  mesh.faces.push_back({id(2, 3), low, high, voxremesh::kNoCorner});
+  mesh.faces.push_back({low, id(4, 3), high, voxremesh::kNoCorner});
+  return mesh;
+}
+
+TEST(ReconnectFailingFaces, CollapsesTheShortSideOfSliverTriangles) {
+  const QuadMesh start = doubledPoint();
+  ASSERT_TRUE(eulerAndOriented(start).second);
+  // Triangles pass only when nearly equilateral: no position of the two copies between their
+  // fixed neighbours mends both slivers, nor does another cut; collapsing their short side does.
+  voxremesh::QualitySettings settings = unitCriteria();
+  settings.minTriaAngleDeg = 55.0;
+  ASSERT_EQ(voxremesh::assessQuality(start, settings).failingAny, 2u);
+  QuadMesh mesh = start;
+  EXPECT_GE(voxremesh::reconnectFailingFaces(mesh, ReferenceSurface(voxremesh::test::unitGrid(6)),
+                                             settings),
+            1u);
+  EXPECT_EQ(voxremesh::assessQuality(mesh, settings).failingAny, 0u);
+  // Both copies made one again: the grid's faces and points.
+  EXPECT_EQ(mesh.faces.size(), 36u);
+  EXPECT_EQ(mesh.points.size(), 49u);
+  EXPECT_EQ(eulerAndOriented(mesh), eulerAndOriented(start));
+  EXPECT_EQ(voxremesh::test::foldedCount(mesh), 0u);
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) EXPECT_EQ(mesh.points[v][2], 0.0) << v;
 }
 
 TEST(ReconnectFailingFaces, RecutsAPairCutAlongTheWrongDiagonal) {

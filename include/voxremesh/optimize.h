@@ -238,8 +238,10 @@ std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& origina
 /// penalty of face_score), when they fail fewer than the quad did (a quad folded over a bend
 /// tighter than its size: warping, Jacobian ratio). The largest gains go first, then face order,
 /// while the triangle share stays at or under `maxTriangleShare`. A diagonal that is already an
-/// edge of other faces is not cut. The triangles keep the quad's orientation and its place in the
-/// face order; points do not move. Serial, deterministic.
+/// edge of other faces is not cut, nor one that would leave a triangle pointing more than 120
+/// degrees from the other or from a face across one of its edges (a diagonal outside a non-convex
+/// quad folds a triangle, which passes every criterion of its own). The triangles keep the quad's
+/// orientation and its place in the face order; points do not move. Serial, deterministic.
 /// @return the number of quads split
 /// Throws SettingError for a share outside 0..1 or bad settings; std::invalid_argument for
 /// settings.targetSize <= 0 or a bad mesh.
@@ -250,8 +252,10 @@ std::size_t splitFailingQuads(QuadMesh& mesh, const QualitySettings& settings,
 /// `settings`), in index order, its neighbourhood (the faces round the points of the faces round
 /// its corners) is tried as it is and after each change of connectivity at the face: every other
 /// cut of the polygon it makes with a neighbour across one of its edges (as rotateFailingEdges,
-/// under the same rules) and, for a quad, the collapse of either diagonal (under the constraint
-/// and manifold rules of the rhombic collapse). Each try is followed by one round of the pattern
+/// under the same rules), for a quad the collapse of either diagonal and, for a face failing the
+/// minimum length or with a degenerate corner, the collapse of each of its edges (a quad along the
+/// edge becomes a triangle, a triangle along it goes), both under the constraint and manifold
+/// rules of the rhombic collapse. Each try is followed by one round of the pattern
 /// search of improveFailingElements (down to steps of a sixteenth of an edge) over the points of
 /// the faces round the face's corners; the three tries that then score best go on to up to
 /// `sweeps` rounds in all, the others are dropped. Only tries whose faces stay as close to the

@@ -1,11 +1,14 @@
 // The polygon two faces make around the edge they share, and its cuts along other diagonals: what
-// edge rotation (rotateFailingEdges, reconnectFailingFaces) chooses between.
+// edge rotation (rotateFailingEdges, reconnectFailingFaces) chooses between, and whether a cut
+// folds a face.
 #pragma once
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
+#include "optimize/mesh_topology.h"
 #include "voxremesh/quad_mesh.h"
 
 namespace voxremesh::opt {
@@ -27,5 +30,13 @@ std::size_t diagonalEnd(std::size_t n, std::size_t i);
 /// diagonalEnd(n, i): a triangle pair for 4 corners, a quad and a triangle for 5, two quads for
 /// 6, oriented like the polygon.
 std::array<Face, 2> cutPolygon(const std::vector<CornerIndex>& polygon, std::size_t i);
+
+/// True when neither face of `cut` (the faces that replace faces f and g, which may be one face)
+/// points more than 120 degrees (the fold criterion's angle, quality.h) away from a face across
+/// one of its edges: the other face of the cut, or a face outside found through `topology` (faces
+/// changed since it was built may be missed). A cut along a diagonal outside a non-convex
+/// polygon, or across a bend, folds a face, which can pass every criterion of its own.
+bool cutKeepsOrientation(const QuadMesh& mesh, const Topology& topology, std::uint32_t f,
+                         std::uint32_t g, const std::array<Face, 2>& cut);
 
 }  // namespace voxremesh::opt

@@ -107,6 +107,24 @@ opt::Score scoreOf(const QuadMesh& mesh, const QualitySettings& settings) {
   return score;
 }
 
+/// Renames `merge.remove` to `merge.keep` in `faces`; a face that then repeats a corner loses the
+/// repeat (a quad along the merged edge becomes a triangle, a triangle along it goes).
+void mergeCorners(std::vector<Face>& faces, const opt::Merge& merge) {
+  std::vector<Face> merged;
+  for (const Face& face : faces) {
+    Face reduced{kNoCorner, kNoCorner, kNoCorner, kNoCorner};
+    std::size_t count = 0;
+    for (int k = 0; k < cornerCount(face); ++k) {
+      const CornerIndex v =
+          face[std::size_t(k)] == merge.remove ? merge.keep : face[std::size_t(k)];
+      if (std::find(reduced.begin(), reduced.begin() + count, v) == reduced.begin() + count)
+        reduced[count++] = v;
+    }
+    if (count >= 3) merged.push_back(reduced);
+  }
+  faces = std::move(merged);
+}
+
 /// The neighbourhood after `edit`, as its own mesh, its points not yet searched.
 Trial buildTrial(const QuadMesh& mesh, const opt::Topology& t, const Neighbourhood& n,
                  const Edit& edit) {
@@ -116,10 +134,7 @@ Trial buildTrial(const QuadMesh& mesh, const opt::Topology& t, const Neighbourho
     if (std::find(edit.removed.begin(), edit.removed.end(), f) == edit.removed.end())
       faces.push_back(mesh.faces[f]);
   faces.insert(faces.end(), edit.added.begin(), edit.added.end());
-  if (edit.merge)
-    for (Face& face : faces)
-      for (int k = 0; k < cornerCount(face); ++k)
-        if (face[std::size_t(k)] == edit.merge->remove) face[std::size_t(k)] = edit.merge->keep;
+  if (edit.merge) mergeCorners(faces, *edit.merge);
   trial.global = n.allPoints;
   if (edit.merge)
     trial.global.erase(std::find(trial.global.begin(), trial.global.end(), edit.merge->remove));
@@ -180,9 +195,10 @@ void searchTrial(Trial& trial, const ReferenceSurface& original, const QualitySe
 }
 
 /// The edits tried at face f: every other cut of the polygon it makes with a neighbour across
-/// each of its edges (as rotateFailingEdges), and the collapse of each diagonal of a quad.
+/// each of its edges (as rotateFailingEdges), the collapse of each diagonal of a quad and, when
+/// `collapseEdges`, of each of its edges.
 std::vector<Edit> editsAt(const QuadMesh& mesh, const opt::Topology& t, std::uint32_t f,
-                          const ReferenceSurface& original) {
+                          const ReferenceSurface& original, bool collapseEdges) {
   std::vector<Edit> edits;
   const Face& face = mesh.faces[f];
   const int n = cornerCount(face);
@@ -211,6 +227,18 @@ std::vector<Edit> editsAt(const QuadMesh& mesh, const opt::Topology& t, std::uin
       edits.push_back(Edit{{std::min(f, g), std::max(f, g)}, {cut[0], cut[1]}, std::nullopt});
     }
   }
+  // A face with a sliver corner or a short side: each of its edges collapsed (both ends made one
+  // point), which turns it and its neighbour across the edge into triangles.
+  if (collapseEdges)
+    for (int k = 0; k < n; ++k) {
+      const CornerIndex u = face[std::size_t(k)], v = face[std::size_t((k + 1) % n)];
+      if (!opt::mergeKeepsManifold(mesh, t, u, v)) continue;
+      std::optional<opt::Merge> merge = opt::mergeUnderConstraints(mesh, u, v);
+      if (!merge) continue;
+      if (opt::roleOf(mesh, merge->keep) == PointRole::Free)
+        merge->position = original.closestPoint(merge->position).point;
+      edits.push_back(Edit{{}, {}, merge});
+    }
   if (n == 4)
     for (int k = 0; k < 2; ++k) {
       const CornerIndex u = face[std::size_t(k)], v = face[std::size_t(k + 2)];
@@ -279,7 +307,9 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
     const std::size_t faceCount = mesh.faces.size();
     std::size_t roundChanged = 0;
     for (std::uint32_t f = 0; f < faceCount; ++f) {
-      if (elementFailures(qualities[f], cornerCount(mesh.faces[f]), settings) == 0) continue;
+      const std::uint32_t failures =
+          elementFailures(qualities[f], cornerCount(mesh.faces[f]), settings);
+      if (failures == 0) continue;
       const Neighbourhood n = neighbourhoodOf(mesh, t, f);
       if (std::any_of(n.allPoints.begin(), n.allPoints.end(),
                       [&](CornerIndex v) { return locked[v] != 0; }))
@@ -295,7 +325,10 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
       opt::Score before;
       for (const std::uint32_t g : n.faces) before += opt::faceScore(mesh, mesh.faces[g], settings);
       std::vector<Edit> edits{Edit{}};
-      const std::vector<Edit> others = editsAt(mesh, t, f, original);
+      const std::uint32_t shortOrSliver =
+          (1u << unsigned(Criterion::MinLength)) | (1u << unsigned(Criterion::DegenerateCorner));
+      const std::vector<Edit> others =
+          editsAt(mesh, t, f, original, (failures & shortOrSliver) != 0);
       edits.insert(edits.end(), others.begin(), others.end());
       // The tries are independent: in parallel, the best chosen in edit order. First one sweep
       // of searches in each; then the rest of the sweeps in the best few only (the first of

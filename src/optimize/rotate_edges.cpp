@@ -18,6 +18,7 @@ namespace {
 
 using namespace geom;  // NOLINT: the vector operators
 
+using opt::cutKeepsOrientation;
 using opt::cutPolygon;
 using opt::diagonalEnd;
 using opt::Face;
@@ -25,45 +26,6 @@ using Edge = std::pair<CornerIndex, CornerIndex>;
 
 Edge edgeKey(CornerIndex a, CornerIndex b) {
   return {std::min(a, b), std::max(a, b)};
-}
-
-/// The normal of a face, not normalised (geom::elementNormal).
-geom::Vec3 faceNormal(const QuadMesh& mesh, const Face& face) {
-  const bool triangle = cornerCount(face) == 3;
-  return geom::elementNormal(mesh.points[face[0]], mesh.points[face[1]], mesh.points[face[2]],
-                             mesh.points[face[triangle ? 2 : 3]], triangle);
-}
-
-/// True when neither face of a cut of the polygon round faces f and g points more than 120 degrees
-/// (the fold criterion's angle, quality.h) away from a face across one of its edges: the other
-/// face of the cut, or a face outside the polygon found through `topology` (faces changed since it
-/// was built may be missed). A cut along a diagonal outside a non-convex polygon, or across a
-/// bend, folds a face, which can pass every criterion of its own.
-bool cutKeepsOrientation(const QuadMesh& mesh, const opt::Topology& topology, std::uint32_t f,
-                         std::uint32_t g, const std::array<Face, 2>& cut) {
-  constexpr double kFoldCosine = -0.5;
-  const auto has = [](const Face& face, CornerIndex v) {
-    return std::find(face.begin(), face.begin() + cornerCount(face), v) !=
-           face.begin() + cornerCount(face);
-  };
-  for (int c = 0; c < 2; ++c) {
-    const Face& face = cut[std::size_t(c)];
-    const Vec3 n = normalized(faceNormal(mesh, face));
-    const int corners = cornerCount(face);
-    for (int k = 0; k < corners; ++k) {
-      const CornerIndex p = face[std::size_t(k)], q = face[std::size_t((k + 1) % corners)];
-      const Face& other = cut[std::size_t(1 - c)];
-      if (has(other, p) && has(other, q)) {
-        if (dot(n, normalized(faceNormal(mesh, other))) < kFoldCosine) return false;
-        continue;
-      }
-      for (const std::uint32_t* h = topology.facesBegin(p); h != topology.facesEnd(p); ++h)
-        if (*h != f && *h != g && has(mesh.faces[*h], p) && has(mesh.faces[*h], q) &&
-            dot(n, normalized(faceNormal(mesh, mesh.faces[*h]))) < kFoldCosine)
-          return false;
-    }
-  }
-  return true;
 }
 
 }  // namespace

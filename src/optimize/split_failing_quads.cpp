@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "optimize/edge_polygon.h"
 #include "optimize/face_score.h"
 #include "optimize/mesh_topology.h"
 #include "voxremesh/errors.h"
@@ -61,9 +62,12 @@ std::size_t splitFailingQuads(QuadMesh& mesh, const QualitySettings& settings,
     for (int k = 0; k < 2; ++k) {
       // A diagonal that is already an edge of other faces would get more than two faces.
       if (topology->edgeFaces(face[std::size_t(k)], face[std::size_t(k + 2)]) > 0) continue;
+      // Nor may a triangle fold against the other or a neighbour (a diagonal outside a
+      // non-convex quad): a flipped triangle can pass every criterion of its own.
+      const std::array<Face, 2> cut = cutAlong(face, k);
+      if (!opt::cutKeepsOrientation(mesh, *topology, f, f, cut)) continue;
       opt::Score score;
-      for (const Face& triangle : cutAlong(face, k))
-        score += opt::faceScore(mesh, triangle, settings);
+      for (const Face& triangle : cut) score += opt::faceScore(mesh, triangle, settings);
       if (!found || score.betterThan(bestScore)) {
         found = true;
         bestScore = score;
