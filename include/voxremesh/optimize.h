@@ -259,12 +259,14 @@ std::size_t splitFailingQuads(QuadMesh& mesh, const QualitySettings& settings,
 /// search of improveFailingElements (down to steps of a sixteenth of an edge) over the points of
 /// the faces round the face's corners; the three tries that then score best go on to up to
 /// `sweeps` rounds in all, the others are dropped. Only tries whose faces stay as close to the
-/// original as half the distance limit (settings.maxDistanceFactor x targetSize), or as the
+/// original as half the distance limit (settings.maxDistanceFactor x targetSize; the whole
+/// limit round a face with a degenerate corner, which no acceptance allows), or as the
 /// neighbourhood's faces were, take part (measured at face centres and edge midpoints), and only
 /// those with no more folded faces (foldedFaces, quality.h) than the neighbourhood had: a flipped
 /// face can pass every criterion of its own. The one whose neighbourhood then scores best is kept
 /// when it fails fewer criteria than the neighbourhood did. Neighbourhoods changed in a round do
-/// not overlap; rounds repeat until none changes or `maxRounds` is reached. The tries of one face
+/// not overlap; rounds repeat until none changes or `maxRounds` is reached, then as many again
+/// over the faces with a degenerate corner only. The tries of one face
 /// run in parallel and are chosen in order: the result does not depend on the thread count.
 /// @return the number of neighbourhoods changed
 /// Throws std::invalid_argument for an empty surface, negative rounds or sweeps,

@@ -300,7 +300,11 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
   std::map<Face, std::uint32_t> triedAt;
   std::vector<std::uint32_t> changedAt(mesh.points.size(), 0);
   std::uint32_t stamp = 0;
-  for (int round = 0; round < maxRounds; ++round) {
+  // After maxRounds over every failing face, as many again over the faces with a degenerate
+  // corner only: no acceptance allows one, while it allows a share of other failures.
+  const std::uint32_t degenerate = 1u << unsigned(Criterion::DegenerateCorner);
+  for (int round = 0; round < 2 * maxRounds; ++round) {
+    const std::uint32_t criteriaTried = round < maxRounds ? ~0u : degenerate;
     const opt::Topology t = opt::buildTopology(mesh);
     const std::vector<ElementQuality> qualities = elementQualities(mesh);
     std::vector<std::uint8_t> locked(mesh.points.size(), 0), deleted(mesh.faces.size(), 0);
@@ -309,7 +313,7 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
     for (std::uint32_t f = 0; f < faceCount; ++f) {
       const std::uint32_t failures =
           elementFailures(qualities[f], cornerCount(mesh.faces[f]), settings);
-      if (failures == 0) continue;
+      if ((failures & criteriaTried) == 0) continue;
       const Neighbourhood n = neighbourhoodOf(mesh, t, f);
       if (std::any_of(n.allPoints.begin(), n.allPoints.end(),
                       [&](CornerIndex v) { return locked[v] != 0; }))
@@ -325,8 +329,7 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
       opt::Score before;
       for (const std::uint32_t g : n.faces) before += opt::faceScore(mesh, mesh.faces[g], settings);
       std::vector<Edit> edits{Edit{}};
-      const std::uint32_t shortOrSliver =
-          (1u << unsigned(Criterion::MinLength)) | (1u << unsigned(Criterion::DegenerateCorner));
+      const std::uint32_t shortOrSliver = (1u << unsigned(Criterion::MinLength)) | degenerate;
       const std::vector<Edit> others =
           editsAt(mesh, t, f, original, (failures & shortOrSliver) != 0);
       edits.insert(edits.end(), others.begin(), others.end());
@@ -363,8 +366,11 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
       // the neighbourhood's faces were, take part.
       std::vector<Face> present;
       for (const std::uint32_t g : n.faces) present.push_back(mesh.faces[g]);
-      const double allowed = std::max(opt::chordError(mesh, present, original),
-                                      0.5 * settings.maxDistanceFactor * settings.targetSize);
+      // A face with a degenerate corner, which no acceptance allows, may use the whole limit.
+      const double limitShare = (failures & degenerate) != 0 ? 1.0 : 0.5;
+      const double allowed =
+          std::max(opt::chordError(mesh, present, original),
+                   limitShare * settings.maxDistanceFactor * settings.targetSize);
       // Nor may a try fold more faces than the neighbourhood had folded (a flipped face can pass
       // every criterion of its own); those are counted only when a try has a fold.
       std::optional<std::size_t> foldsBefore;
