@@ -10,6 +10,9 @@ find_package(OpenVDB REQUIRED)
 
 # zlib (a dependency of OpenVDB anyway) compresses the PNG images of `voxremesh slice`.
 find_package(ZLIB REQUIRED)
+# With Blosc (OpenVDB's other codec; FindBlosc.cmake ships beside FindOpenVDB.cmake), zlib also
+# decompresses each block of a .vdb file's trees in its layout check (vdb_tree_layout.cpp).
+find_package(Blosc REQUIRED)
 
 find_package(OpenMesh REQUIRED)
 if(NOT TARGET OpenMeshCore)

@@ -356,7 +356,8 @@ TEST(CliVolume, DamagedLengthsInAVdbAreRefusedBeforeOpenVdbAllocatesThem) {
   writeText(dir / "damaged.vdb", bytes);
   // Also the fuzzer's findings (tests/fuzz/findings: a 2 GB metadata name in a second grid, a
   // garbage format version whose OpenVDB read took 4 GB or hung building its message, a leaf's
-  // blosc block said to hold 70 TB, 4294967296 sheets).
+  // blosc block said to hold 70 TB, 4294967296 sheets, an internal node's blosc block of other
+  // values whose refusal by OpenVDB leaked the root's child).
   std::vector<fs::path> files = {dir / "damaged.vdb"};
   for (const auto& entry :
        fs::directory_iterator(fs::path(VOXREMESH_SOURCE_DIR) / "tests" / "fuzz" / "findings"))

@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   g++ cmake make ccache
   libopenvdb-dev libboost-iostreams-dev libtbb-dev libopenmesh-dev libgtest-dev zlib1g-dev
+  libblosc-dev  # the .vdb layout check decompresses blosc blocks (src/volume/vdb_tree_layout.cpp)
   libopenvdb-tools python3-openvdb
   calculix-ccx  # tests/calculix_modes_test.cpp runs ccx on the original and remeshed decks
   clang libclang-rt-dev  # the sanitizer and fuzzing build (tools/ci_sanitizers.sh)

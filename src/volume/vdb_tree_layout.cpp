@@ -5,8 +5,15 @@
 // plain, or in a zip or blosc block that starts with an Int64 byte count, negative for bytes
 // stored uncompressed). io::File marks its stream seekable, so a leaf's data blocks skip their
 // copy of the value mask and the values stored are counted by the mask of the topology.
+// OpenVDB throws when a zip or blosc block does not decompress to its values (after allocating
+// nodes it then leaks), and reads a bool grid's bytes into bools, so each block is decompressed
+// here and each byte OpenVDB reads into a bool must be 0 or 1.
 #include "volume/vdb_tree_layout.h"
 
+#include <blosc.h>
+#include <zlib.h>
+
+#include <algorithm>
 #include <array>
 #include <bitset>
 #include <map>
@@ -31,6 +38,7 @@ constexpr std::uint64_t kCoordBytes = 12;        // an origin: three Int32
 constexpr std::uint64_t kLeafMaskBytes = 64;     // NodeMask<3>
 constexpr std::uint64_t kBloscHeaderBytes = 16;  // BLOSC_MIN_HEADER_LENGTH
 constexpr std::uint64_t kBloscSizeAt = 12;       // the header's compressed size (cbytes)
+constexpr std::uint64_t kBloscValuesAt = 4;      // the header's uncompressed size (nbytes)
 
 /// How a leaf stores its values.
 enum class LeafKind {
@@ -89,6 +97,32 @@ struct NodeWords {
   std::string node, valueMask, metadata, inactive, selection, values, blockSize;
 };
 
+/// A zlib inflate stream (as uncompress runs it), ended when it goes out of scope.
+struct Inflater {
+  Inflater() { started = inflateInit(&stream) == Z_OK; }
+  ~Inflater() {
+    if (started) inflateEnd(&stream);
+  }
+  Inflater(const Inflater&) = delete;
+  Inflater& operator=(const Inflater&) = delete;
+
+  z_stream stream{};
+  bool started = false;
+};
+
+/// Why the inflate `stream` of a block, stopped with `status` when it ended, failed, filled the
+/// values or ran out of the block's bytes, is not the `expected` bytes of its values; empty when
+/// it is.
+std::string unzipProblem(const z_stream& stream, int status, std::uint64_t expected) {
+  const std::uint64_t produced = stream.total_out;
+  if (status == Z_STREAM_END)
+    return produced == expected ? std::string() : "it holds " + std::to_string(produced) + " bytes";
+  if (status == Z_OK)
+    return "the block ends inside its zlib stream, after " + std::to_string(produced) + " bytes";
+  if (status == Z_BUF_ERROR && produced == expected) return "it holds more bytes";
+  return std::string("zlib: ") + (stream.msg != nullptr ? stream.msg : zError(status));
+}
+
 /// A child of the root as its topology was read: its origin and its leaves' active-value counts.
 struct RootChild {
   std::array<std::int32_t, 3> origin{};
@@ -132,9 +166,37 @@ class TreeWalker {
 
   /// A zip or blosc block (bloscFromStream, unzipFromStream) of values that take `storedBytes`
   /// uncompressed. Throws InputError when its size does not fit before `end`, when it is stored
-  /// uncompressed in another number of bytes, or when it is a blosc block shorter than its header
-  /// or whose header claims more bytes than it holds.
+  /// uncompressed in another number of bytes, when it does not decompress to `storedBytes` bytes
+  /// (see unzip and unblosc), or when bools() or checkBools() refuse its values.
   void block(std::uint64_t storedBytes, std::uint64_t end, bool blosc, const NodeWords& node);
+
+  /// Inflates the zip block of `bytes` bytes at the position (its size field at `at`) into
+  /// values_. Throws InputError at `at` unless it is one zlib stream of exactly `storedBytes`.
+  void unzip(std::uint64_t at, std::uint64_t bytes, std::uint64_t storedBytes, std::uint64_t end,
+             const NodeWords& node);
+
+  /// Decompresses the blosc block of `bytes` bytes at the position (its size field at `at`) into
+  /// values_. Throws InputError at `at` when it is shorter than its header, when its header
+  /// claims more bytes than it holds or other values than `storedBytes` bytes, or when
+  /// blosc_decompress_ctx does not give those bytes.
+  void unblosc(std::uint64_t at, std::uint64_t bytes, std::uint64_t storedBytes, std::uint64_t end,
+               const NodeWords& node);
+
+  /// The root's tiles (RootNode::readTopology): per tile its origin, value and active flag.
+  /// Throws InputError for a flag, or a bool value, other than 0 or 1 (see bools).
+  void rootTiles(std::uint32_t count, std::uint64_t end);
+
+  /// Whether the nodes' values are bools (bool and mask grids), each byte of which OpenVDB reads
+  /// into a bool.
+  bool boolValues() const { return kind_.leaf != LeafKind::kValues; }
+
+  /// Reads `count` bytes of `what` stored as bools before `end`. Throws InputError at the first
+  /// byte other than 0 or 1, or like LayoutReader::bytes.
+  void bools(std::uint64_t count, std::uint64_t end, const std::string& what);
+
+  /// Throws InputError at `at` (a compressed block) when one of the `count` bytes decompressed
+  /// into values_ is neither 0 nor 1; `what` names the values.
+  void checkBools(std::uint64_t count, std::uint64_t at, const std::string& what) const;
 
   /// LeafNode::readBuffers of a leaf whose topology mask has `active` bits set. Throws
   /// InputError for its data not fitting before the grid's end, or as values() does.
@@ -146,12 +208,17 @@ class TreeWalker {
   const std::string root_;
   const NodeWords internal_, leaf_;
   std::vector<RootChild> children_;
+  std::vector<unsigned char> values_;  ///< a block's values, decompressed
+  std::vector<unsigned char> packed_;  ///< a blosc block, as blosc_decompress_ctx reads it
 };
 
 void TreeWalker::topology() {
   const std::uint64_t end = grid_.blockPosition;
   reader_.skip(sizeof(std::int32_t), end, "the buffer count of the tree of " + grid_.which);
-  reader_.skip(kind_.bytes, end, "the background value of " + root_);
+  if (boolValues())
+    bools(kind_.bytes, end, "the background value of " + root_);
+  else
+    reader_.skip(kind_.bytes, end, "the background value of " + root_);
   const std::uint64_t countsAt = reader_.position();
   const auto tiles = reader_.require<std::uint32_t>(end, "the tile count of " + root_);
   const auto children = reader_.require<std::uint32_t>(end, "the child count of " + root_);
@@ -161,7 +228,7 @@ void TreeWalker::topology() {
                                  std::to_string(tileBytes) + " bytes each, but only " +
                                  std::to_string(reader_.left(end)) + " bytes remain before byte " +
                                  std::to_string(end));
-  reader_.skip(tiles * tileBytes, end, "the tiles of " + root_);
+  rootTiles(tiles, end);
   const std::uint64_t childBytes = kCoordBytes + minInternalBytes(5);
   if (children > reader_.left(end) / childBytes)
     reader_.failAt(countsAt + sizeof(std::uint32_t),
@@ -211,7 +278,10 @@ void TreeWalker::values(std::uint32_t count, std::uint32_t active, std::size_t m
       metadata == kMaskAndTwoInactiveValues) {
     // Inactive values are stored at full size, also when the grid is saved as half floats.
     const std::uint32_t inactive = metadata == kMaskAndTwoInactiveValues ? 2 : 1;
-    reader_.skip(std::uint64_t{inactive} * kind_.bytes, end, node.inactive);
+    if (boolValues())
+      bools(std::uint64_t{inactive} * kind_.bytes, end, node.inactive);
+    else
+      reader_.skip(std::uint64_t{inactive} * kind_.bytes, end, node.inactive);
   }
   if (metadata == kMaskAndNoInactiveValue || metadata == kMaskAndOneInactiveValue ||
       metadata == kMaskAndTwoInactiveValues)
@@ -223,6 +293,8 @@ void TreeWalker::values(std::uint32_t count, std::uint32_t active, std::size_t m
   const std::uint64_t storedBytes = stored * (half ? kind_.halfBytes : kind_.bytes);
   if ((grid_.compression & (kCompressBlosc | kCompressZip)) != 0)
     block(storedBytes, end, (grid_.compression & kCompressBlosc) != 0, node);
+  else if (boolValues())
+    bools(storedBytes, end, node.values);
   else
     reader_.skip(storedBytes, end, node.values);
 }
@@ -238,26 +310,121 @@ void TreeWalker::block(std::uint64_t storedBytes, std::uint64_t end, bool blosc,
     reader_.failAt(at, "a compressed block of " + node.node + " claims " + std::to_string(bytes) +
                            " bytes, but only " + std::to_string(reader_.left(end)) +
                            " remain before byte " + std::to_string(end));
-  // OpenVDB 10 reads uncompressed bytes into the values' buffer before comparing their number.
-  if (stated <= 0 && bytes != storedBytes)
-    reader_.failAt(at, "an uncompressed block of " + node.node + " claims " +
-                           std::to_string(bytes) + " bytes, but its values take " +
-                           std::to_string(storedBytes));
-  if (blosc && stated > 0) {
-    // blosc_decompress reads as many bytes as the block's header says it holds.
-    if (bytes < kBloscHeaderBytes)
-      reader_.failAt(at, "a blosc block of " + node.node + " holds " + std::to_string(bytes) +
-                             " bytes, fewer than its " + std::to_string(kBloscHeaderBytes) +
-                             "-byte header");
-    const unsigned char* header = reader_.bytes(kBloscHeaderBytes, end, "a blosc header");
-    std::uint32_t compressed = 0;
-    std::memcpy(&compressed, header + kBloscSizeAt, sizeof compressed);
-    if (compressed > bytes)
-      reader_.failAt(at, "the header of a blosc block of " + node.node + " claims " +
-                             std::to_string(compressed) + " bytes, but the block holds " +
-                             std::to_string(bytes));
+  if (stated <= 0) {
+    // OpenVDB 10 reads uncompressed bytes into the values' buffer before comparing their number.
+    if (bytes != storedBytes)
+      reader_.failAt(at, "an uncompressed block of " + node.node + " claims " +
+                             std::to_string(bytes) + " bytes, but its values take " +
+                             std::to_string(storedBytes));
+    if (boolValues()) bools(bytes, end, node.values);
+    reader_.seek(at + sizeof(std::int64_t) + bytes);
+    return;
   }
+  if (blosc)
+    unblosc(at, bytes, storedBytes, end, node);
+  else
+    unzip(at, bytes, storedBytes, end, node);
+  if (boolValues()) checkBools(storedBytes, at, node.values);
   reader_.seek(at + sizeof(std::int64_t) + bytes);
+}
+
+void TreeWalker::unzip(std::uint64_t at, std::uint64_t bytes, std::uint64_t storedBytes,
+                       std::uint64_t end, const NodeWords& node) {
+  values_.resize(std::max<std::uint64_t>(storedBytes, 1));  // zlib wants somewhere to write
+  Inflater inflater;
+  if (!inflater.started) reader_.failAt(at, "zlib cannot start to decompress a block");
+  z_stream& stream = inflater.stream;
+  stream.next_out = values_.data();
+  stream.avail_out = static_cast<uInt>(storedBytes);
+  int status = Z_OK;
+  for (std::uint64_t left = bytes; left > 0 && status == Z_OK;) {
+    const auto chunk =
+        static_cast<std::size_t>(std::min<std::uint64_t>(left, LayoutReader::kMaxBytes));
+    stream.next_in = const_cast<Bytef*>(reader_.bytes(chunk, end, node.values));
+    stream.avail_in = static_cast<uInt>(chunk);
+    status = inflate(&stream, Z_NO_FLUSH);
+    left -= chunk;
+  }
+  const std::string problem = unzipProblem(stream, status, storedBytes);
+  if (!problem.empty())
+    reader_.failAt(at, "the zip block of " + node.node + " does not decompress to the " +
+                           std::to_string(storedBytes) + " bytes of its values (" + problem + ")");
+}
+
+void TreeWalker::unblosc(std::uint64_t at, std::uint64_t bytes, std::uint64_t storedBytes,
+                         std::uint64_t end, const NodeWords& node) {
+  // blosc_decompress reads as many bytes as the block's header says it holds.
+  if (bytes < kBloscHeaderBytes)
+    reader_.failAt(at, "a blosc block of " + node.node + " holds " + std::to_string(bytes) +
+                           " bytes, fewer than its " + std::to_string(kBloscHeaderBytes) +
+                           "-byte header");
+  const unsigned char* header = reader_.bytes(kBloscHeaderBytes, end, "a blosc header");
+  packed_.assign(header, header + kBloscHeaderBytes);
+  std::uint32_t compressed = 0, valueBytes = 0;
+  std::memcpy(&compressed, packed_.data() + kBloscSizeAt, sizeof compressed);
+  std::memcpy(&valueBytes, packed_.data() + kBloscValuesAt, sizeof valueBytes);
+  if (compressed > bytes)
+    reader_.failAt(at, "the header of a blosc block of " + node.node + " claims " +
+                           std::to_string(compressed) + " bytes, but the block holds " +
+                           std::to_string(bytes));
+  if (valueBytes != storedBytes)
+    reader_.failAt(at, "the header of a blosc block of " + node.node + " claims " +
+                           std::to_string(valueBytes) + " bytes of values, but they take " +
+                           std::to_string(storedBytes));
+  for (std::uint64_t left = compressed > kBloscHeaderBytes ? compressed - kBloscHeaderBytes : 0;
+       left > 0;) {
+    const auto chunk =
+        static_cast<std::size_t>(std::min<std::uint64_t>(left, LayoutReader::kMaxBytes));
+    const unsigned char* data = reader_.bytes(chunk, end, node.values);
+    packed_.insert(packed_.end(), data, data + chunk);
+    left -= chunk;
+  }
+  values_.resize(std::max<std::uint64_t>(storedBytes, 1));
+  const int got = blosc_decompress_ctx(packed_.data(), values_.data(), storedBytes, 1);
+  if (got < 0 || static_cast<std::uint64_t>(got) != storedBytes)
+    reader_.failAt(
+        at, "the blosc block of " + node.node + " does not decompress to the " +
+                std::to_string(storedBytes) + " bytes of its values (blosc: " +
+                (got < 0 ? "error " + std::to_string(got) : std::to_string(got) + " bytes") + ")");
+}
+
+void TreeWalker::rootTiles(std::uint32_t count, std::uint64_t end) {
+  const std::string origin = "the origin of a tile of " + root_,
+                    value = "the value of a tile of " + root_,
+                    active = "the active flag of a tile of " + root_;
+  for (std::uint32_t k = 0; k < count; ++k) {
+    reader_.skip(kCoordBytes, end, origin);
+    if (boolValues())
+      bools(kind_.bytes, end, value);
+    else
+      reader_.skip(kind_.bytes, end, value);
+    bools(1, end, active);
+  }
+}
+
+void TreeWalker::bools(std::uint64_t count, std::uint64_t end, const std::string& what) {
+  for (std::uint64_t left = count; left > 0;) {
+    const std::uint64_t at = reader_.position();
+    const auto chunk =
+        static_cast<std::size_t>(std::min<std::uint64_t>(left, LayoutReader::kMaxBytes));
+    const unsigned char* data = reader_.bytes(chunk, end, what);
+    const unsigned char* bad =
+        std::find_if(data, data + chunk, [](unsigned char byte) { return byte > 1; });
+    if (bad != data + chunk)
+      reader_.failAt(at + static_cast<std::uint64_t>(bad - data),
+                     "a byte of " + what + " is " + std::to_string(*bad) +
+                         ", but it is read into a bool (0 or 1)");
+    left -= chunk;
+  }
+}
+
+void TreeWalker::checkBools(std::uint64_t count, std::uint64_t at, const std::string& what) const {
+  const auto last = values_.begin() + static_cast<std::ptrdiff_t>(count);
+  const auto bad = std::find_if(values_.begin(), last, [](unsigned char byte) { return byte > 1; });
+  if (bad != last)
+    reader_.failAt(at, "decompressed byte " + std::to_string(bad - values_.begin()) + " of " +
+                           what + " is " + std::to_string(*bad) +
+                           ", but it is read into a bool (0 or 1)");
 }
 
 void TreeWalker::buffers() {

@@ -28,10 +28,13 @@ bool isWalkedTreeType(const std::string& treeType);
 /// (Tree::readTopology, then readBuffers with the leaf value masks of the topology): the root's
 /// tiles and children, each internal node's masks and values, each leaf's mask and values. Every
 /// node count and compressed block size must fit in the grid's bytes: the topology before
-/// `grid.blockPosition`, the data blocks before `grid.endPosition`.
+/// `grid.blockPosition`, the data blocks before `grid.endPosition`. Each zip or blosc block must
+/// decompress to exactly its values' bytes, and each byte OpenVDB reads into a bool (a tile's
+/// active flag; a bool or mask grid's background, tile and internal-node values) must be 0 or 1.
 /// Precondition: isWalkedTreeType(treeType); file format version 222 to 224.
 /// Throws InputError naming the file and the byte offset of the first count, size or field that
-/// runs past its bound, or of a blosc block whose header claims more bytes than the block holds.
+/// runs past its bound, of a block that does not decompress to its values, or of a bool byte
+/// other than 0 or 1 (for a compressed block: the block's).
 void checkTreeLayout(LayoutReader& reader, const std::string& treeType, const TreeGrid& grid);
 
 }  // namespace voxremesh::volume
