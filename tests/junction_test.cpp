@@ -42,6 +42,36 @@ TEST(JoinAtJunctions, JunctionNodesAFewUnitsInTheLastPlaceApartAreOne) {
   EXPECT_EQ(joinAtJunctions({first, apart}).points.size(), 5u);
 }
 
+TEST(JoinAtJunctions, AJunctionCurvesEndThatIsACornerOnOneSideIsOneNode) {
+  // A plate meets a wall along a junction curve; the curve's end, where the plate's free edge
+  // meets the wall, is a Corner of the plate's mesh and a Junction point of the wall's. Without
+  // the weld the plate hangs loose at that node (ISat part 7: 20 pieces instead of 4).
+  QuadMesh wall;
+  wall.points = {{0, 0, 0}, {0, 4, 0}, {0, 4, 4}, {0, 0, 4}};
+  wall.faces = {{0, 1, 2, 3}};
+  wall.constraints = {{PointRole::Junction, kNoCurve},
+                      {PointRole::Junction, kNoCurve},
+                      {PointRole::Boundary, kNoCurve},
+                      {PointRole::Boundary, kNoCurve}};
+  QuadMesh plate;
+  plate.points = {{0, 0, 0}, {0, 4, 0}, {3, 4, 0}, {3, 0, 0}};
+  plate.faces = {{0, 1, 2, 3}};
+  plate.constraints = {{PointRole::Corner, kNoCurve},
+                       {PointRole::Junction, kNoCurve},
+                       {PointRole::Boundary, kNoCurve},
+                       {PointRole::Boundary, kNoCurve}};
+  const QuadMesh joined = joinAtJunctions({wall, plate});
+  EXPECT_EQ(joined.points.size(), 6u);
+  EXPECT_EQ(joined.faces[1][0], joined.faces[0][0]);
+  EXPECT_EQ(joined.faces[1][1], joined.faces[0][1]);
+  // A Boundary point at the same place as another's Boundary point stays its own.
+  QuadMesh touching = plate;
+  touching.constraints[0] = {PointRole::Boundary, kNoCurve};
+  touching.points[1] = {0, 4, 4};  // meets the wall's Boundary corner only
+  touching.constraints[1] = {PointRole::Boundary, kNoCurve};
+  EXPECT_EQ(joinAtJunctions({wall, touching}).points.size(), 8u);
+}
+
 TEST(JunctionNodes, SameNodesWhicheverWayAndWhereverTheCurveStarts) {
   // A closed square-ish curve with a bend, given from different start points and directions.
   VolumeCurve curve;

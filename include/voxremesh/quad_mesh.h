@@ -82,11 +82,12 @@ void eraseUnusedPoints(QuadMesh& mesh);
 
 /// Joins the meshes of the sheets of one part into one mesh: points, constraints, faces and
 /// curves concatenated in the given order (curve indices and faces renumbered), then points with
-/// role Junction at the same place merged into the first of them, so that sheets extracted
-/// separately share their nodes along the junction curves again (a T-junction edge then has three
-/// faces). The same place: within 1e-9 of the extent of all the meshes' points (one junction node
-/// computed along two chains of its curve may differ in its last bits). The part is the first mesh's. Preconditions: every face names existing
-/// points; constraints empty or one per point.
+/// role Junction or Corner (a junction curve's end is often a corner on one side) at the same
+/// place merged into the first of them, so that sheets extracted separately share their nodes
+/// along the junction curves again (a T-junction edge then has three faces). The same place: within
+/// 1e-9 of the extent of all the meshes' points (one junction node computed along two chains of its
+/// curve may differ in its last bits). The part is the first mesh's. Preconditions: every face
+/// names existing points; constraints empty or one per point.
 QuadMesh joinAtJunctions(const std::vector<QuadMesh>& meshes);
 
 }  // namespace voxremesh

@@ -131,7 +131,8 @@ QuadMesh joinAtJunctions(const std::vector<QuadMesh>& meshes) {
           mesh.constraints.empty() ? PointConstraint{} : mesh.constraints[v];
       if (constraint.curve != kNoCurve) constraint.curve += curveBase;
       const auto next = static_cast<CornerIndex>(joined.points.size());
-      if (constraint.role == PointRole::Junction) {
+      // A junction curve's end is often a corner (a feature point, a hard point) on one side.
+      if (constraint.role == PointRole::Junction || constraint.role == PointRole::Corner) {
         index[v] = junctionPoint.findOrAdd(mesh.points[v], next);
         if (index[v] != next) continue;
       }
