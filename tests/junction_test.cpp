@@ -72,6 +72,20 @@ TEST(JoinAtJunctions, AJunctionCurvesEndThatIsACornerOnOneSideIsOneNode) {
   EXPECT_EQ(joinAtJunctions({wall, touching}).points.size(), 8u);
 }
 
+TEST(JunctionNodes, ACurveWithASpacingOfItsOwnIsSampledAtIt) {
+  // Two straight curves 12 long; the second asks for nodes 2 apart (a narrow strip along it),
+  // the first takes the spacing given (4): 2 and 5 inner nodes.
+  VolumeCurve wide, narrow;
+  wide.points = {{0, 0, 0}, {12, 0, 0}};
+  narrow.points = {{0, 5, 0}, {12, 5, 0}};
+  narrow.nodeSpacing = 2.0;
+  const extract::JunctionNodes nodes({wide, narrow}, 4.0, 0.8);
+  ASSERT_NE(nodes.edge(wide.points[0], wide.points[1]), nullptr);
+  ASSERT_NE(nodes.edge(narrow.points[0], narrow.points[1]), nullptr);
+  EXPECT_EQ(nodes.edge(wide.points[0], wide.points[1])->points.size(), 2u);
+  EXPECT_EQ(nodes.edge(narrow.points[0], narrow.points[1])->points.size(), 5u);
+}
+
 TEST(JunctionNodes, SameNodesWhicheverWayAndWhereverTheCurveStarts) {
   // A closed square-ish curve with a bend, given from different start points and directions.
   VolumeCurve curve;

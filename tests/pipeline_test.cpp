@@ -163,9 +163,10 @@ TEST(Pipeline, RemeshDeckDoesNotDependOnTheThreadCount) {
 namespace voxremesh {
 namespace {
 
-/// A 40 x 40 plate of 4-unit quads (part 1) and a 40 x 30 wall of 4 x 6 quads standing on its
-/// edge x = 40 (part 2): the seam is the plate's 11 nodes plateNode(10, j).
-FeModel plateAndWall() {
+/// A 40 x 40 plate of 4-unit quads (part 1) and a wall of `rows` rows of 4 x `rowHeight` quads
+/// (40 x 30 by default) standing on its edge x = 40 (part 2): the seam is the plate's 11 nodes
+/// plateNode(10, j).
+FeModel plateAndWall(int rows = 5, double rowHeight = 6.0) {
   FeModel model;
   auto plateNode = [](int i, int j) { return Id(1 + j * 11 + i); };
   for (int j = 0; j <= 10; ++j)
@@ -173,8 +174,8 @@ FeModel plateAndWall() {
       test::addNode(model, plateNode(i, j), 4.0 * i + 0.31, 4.0 * j + 0.17, 0.23);
   auto wallNode = [&](int k, int j) { return k == 0 ? plateNode(10, j) : Id(1000 + j * 6 + k); };
   for (int j = 0; j <= 10; ++j)
-    for (int k = 1; k <= 5; ++k)
-      test::addNode(model, wallNode(k, j), 40.31, 4.0 * j + 0.17, 0.23 + 6.0 * k);
+    for (int k = 1; k <= rows; ++k)
+      test::addNode(model, wallNode(k, j), 40.31, 4.0 * j + 0.17, 0.23 + rowHeight * k);
   Id shell = 1;
   for (int j = 0; j < 10; ++j)
     for (int i = 0; i < 10; ++i)
@@ -182,7 +183,7 @@ FeModel plateAndWall() {
           model, shell++, 1,
           {plateNode(i, j), plateNode(i + 1, j), plateNode(i + 1, j + 1), plateNode(i, j + 1)});
   for (int j = 0; j < 10; ++j)
-    for (int k = 0; k < 5; ++k)
+    for (int k = 0; k < rows; ++k)
       test::addShell(
           model, shell++, 2,
           {wallNode(k, j), wallNode(k, j + 1), wallNode(k + 1, j + 1), wallNode(k + 1, j)});
@@ -201,6 +202,18 @@ std::size_t seamNodesShared(const FeModel& model) {
   return shared;
 }
 
+/// How many nodes the shells of parts 1 and 2 both use.
+std::size_t nodesShared(const FeModel& model) {
+  std::set<Id> first, second;
+  for (const Shell& s : model.shells)
+    for (int c = 0; c < s.nodeCount; ++c)
+      if (s.part == 1 || s.part == 2)
+        (s.part == 1 ? first : second).insert(s.nodes[std::size_t(c)]);
+  std::size_t shared = 0;
+  for (const Id id : first) shared += second.count(id);
+  return shared;
+}
+
 TEST(Pipeline, PartsOfDifferentSizesStillShareTheirSeam) {
   // Part 1: a 40 x 40 plate of 4-unit quads in z = 0; part 2: a 40 x 30 plate standing on its
   // edge x = 40 (a 90-degree seam), 4 units along the seam and 6 up: their median edges (and so
@@ -212,13 +225,23 @@ TEST(Pipeline, PartsOfDifferentSizesStillShareTheirSeam) {
   ASSERT_EQ(plans.size(), 2u);
   ASSERT_NE(plans[0].targetSize, plans[1].targetSize);
   remeshDeck(model, settings);
-  std::set<Id> plateNodes, wallNodes;
-  for (const Shell& s : model.shells)
-    for (int c = 0; c < s.nodeCount; ++c)
-      (s.part == 1 ? plateNodes : wallNodes).insert(s.nodes[std::size_t(c)]);
-  std::size_t shared = 0;
-  for (const Id id : plateNodes) shared += wallNodes.count(id);
-  EXPECT_GE(shared, 9u) << "the seam of 40 units at the smaller size, 4: about 11 nodes";
+  EXPECT_GE(nodesShared(model), 9u)
+      << "the seam of 40 units at the smaller size, 4: about 11 nodes";
+}
+
+TEST(Pipeline, ANarrowStripAsksItsSeamForItsRowLength) {
+  // The wall is a strip 1 unit tall (one row of 4 x 1 quads) at the deck's size 4: it is meshed
+  // with one row of elements twice its width long, and its seam to the plate gets nodes that far
+  // apart on both sides (21), not the plate's 4 units (11), so that the strip's row stays quads.
+  FeModel model = plateAndWall(1, 1.0);
+  RemeshSettings settings;
+  settings.targetSize = 4.0;
+  const RemeshReport report = remeshDeck(model, settings);
+  ASSERT_EQ(report.parts.size(), 2u);
+  for (const RemeshedPart& part : report.parts)
+    EXPECT_NE(part.status, PartStatus::Kept) << part.plan.part << ": " << part.reason;
+  EXPECT_GE(nodesShared(model), 19u);
+  EXPECT_LE(nodesShared(model), 23u);
 }
 
 TEST(Pipeline, DeckSeamsCountSharedNodesPerPartPairAndTJunctionEdges) {

@@ -81,6 +81,9 @@ struct Polyline {
   /// Junction curves only: every point stays a node and none is added between them (the seam to
   /// a part that keeps its elements).
   bool keepPoints = false;
+  /// Junction curves only: the distance between the nodes placed along it, when the sheets on
+  /// either side ask for less than the extraction's spacing (seamNodeSpacing); 0: the extraction's.
+  double nodeSpacing = 0.0;
 };
 
 /// One manifold, consistently oriented sheet (with boundary) of a part.

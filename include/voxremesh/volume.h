@@ -95,7 +95,8 @@ struct VolumeInfo {
 struct VolumeCurve {
   std::vector<std::array<double, 3>> points;
   bool closed = false;
-  bool keepPoints = false;  ///< junction curves: see Polyline::keepPoints (sheets.h)
+  bool keepPoints = false;   ///< junction curves: see Polyline::keepPoints (sheets.h)
+  double nodeSpacing = 0.0;  ///< junction curves: see Polyline::nodeSpacing (sheets.h)
 };
 
 /// The volume of one part: the grids (behind a handle) plus the curves of its sheets.

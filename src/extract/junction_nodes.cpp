@@ -189,7 +189,11 @@ void JunctionNodes::add(const std::vector<VolumeCurve>& curves, double spacing, 
     if (curve.points.size() < 2) continue;
     const std::vector<Point3> points = canonicalPoints(curve);
     const Walk walk(points, curve.closed);
-    const std::vector<CurveNode> nodes = sampleCurve(walk, curve.keepPoints, spacing, tolerance);
+    // A curve with a spacing of its own keeps the tolerance's share of it.
+    const double own =
+        curve.nodeSpacing > 0.0 && std::isfinite(curve.nodeSpacing) ? curve.nodeSpacing : spacing;
+    const std::vector<CurveNode> nodes =
+        sampleCurve(walk, curve.keepPoints, own, tolerance * own / spacing);
     const std::size_t segments = walk.arc.size() - 1;
     std::vector<JunctionEdgeNodes> perEdge(segments);
     for (std::size_t s = 0; s < segments; ++s) perEdge[s].from = walk.at(s);

@@ -49,7 +49,9 @@ class JunctionNodes {
 
   /// Samples every curve (see the top of the file).
   /// @param curves     junction curves in world space (Volume::junctionCurves)
-  /// @param spacing    target distance between nodes, > 0 (the voxel size)
+  /// @param spacing    target distance between nodes, > 0 (the voxel size); a curve with a
+  ///                   VolumeCurve::nodeSpacing of its own is sampled at that instead, with the
+  ///                   tolerance scaled alike
   /// @param tolerance  largest distance of a curve point from the chord between two nodes, > 0
   /// Throws std::invalid_argument when spacing or tolerance is not positive and finite.
   JunctionNodes(const std::vector<VolumeCurve>& curves, double spacing, double tolerance);

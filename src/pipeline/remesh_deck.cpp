@@ -19,6 +19,7 @@
 #include "io/text_scan.h"
 #include "json/json.h"
 #include "pipeline/remesh_part.h"
+#include "pipeline/seam_spacing.h"
 #include "voxremesh/deck_assembly.h"
 #include "voxremesh/errors.h"
 #include "voxremesh/pipeline.h"
@@ -277,6 +278,9 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
   }
   std::vector<double> junctionSpacing;
   const std::vector<FeModel> models = partModels(deck, plans, junctionSpacing);
+  std::unordered_map<Id, double> seamSpacing;
+  arena.execute(
+      [&] { seamSpacing = pipeline::seamNodeSpacing(models, plans, keptFromStart, settings); });
   // Parts whose seams keep their nodes: from the start those not planned (held shells too) and
   // those on solids, then every part kept in a round.
   std::vector<Id> fixed = unplannedParts(deck, plans);
@@ -299,7 +303,7 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
         const bool isFixed = std::binary_search(fixed.begin(), fixed.end(), plans[i].part);
         const pipeline::PartSurroundings surroundings{
             junctionSpacing[i], isFixed ? otherParts(models[i], plans[i].part) : fixed,
-            hardPoints[i]};
+            hardPoints[i], &seamSpacing};
         report.parts[i] =
             pipeline::remeshPart(models[i], plans[i], settings, surroundings, meshes[i],
                                  [&](const char* stage) { tell(stage, plans[i].part, false); });

@@ -11,6 +11,7 @@
 
 #include "extract/narrow_sheet.h"
 #include "pipeline/remesh_part.h"
+#include "pipeline/seam_spacing.h"
 #include "voxremesh/errors.h"
 
 namespace voxremesh::pipeline {
@@ -45,6 +46,7 @@ extract::JunctionNodes sheetJunctionNodes(const Sheet& sheet, double spacing) {
     VolumeCurve world;
     world.closed = curve.closed;
     world.keepPoints = curve.keepPoints;
+    world.nodeSpacing = curve.nodeSpacing;
     for (const PointIndex p : curve.points) world.points.push_back(sheet.points[p]);
     curves.push_back(std::move(world));
   }
@@ -251,7 +253,7 @@ std::vector<SheetPlan> planSheets(const std::vector<Sheet>& sheets,
       plans.push_back({false, plan.targetSize, {}});
       continue;
     }
-    const double spacing = std::min(plan.targetSize, 2.0 * width);
+    const double spacing = sheetNodeSpacing(sheets[k], plan.targetSize, settings);
     try {
       const QuadMesh surface = sheetSurface(sheets[k]);
       const ReferenceSurface original(surface);
@@ -305,6 +307,7 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
   }
   std::string sizeNote;
   const SheetHardPoints hardPoints = placeHardPoints(sheets, surroundings.hardPoints);
+  if (surroundings.seamSpacing) setSeamSpacing(sheets, *surroundings.seamSpacing, junctionSpacing);
   std::vector<Point3> hardPositions;
   for (const Node& node : model.nodes)
     if (surroundings.hardPoints.count(node.id)) hardPositions.push_back(node.xyz);

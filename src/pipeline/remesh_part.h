@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -63,6 +64,9 @@ struct PartSurroundings {
   /// Nodes of the part that other keywords use as points (hardPointNodes): the new mesh has a
   /// node at each, at its exact coordinates.
   std::unordered_set<Id> hardPoints;
+  /// Per seam node, the spacing the sheets through it ask for (seamNodeSpacing); a junction curve
+  /// whose nodes ask for less than junctionSpacing gets that (setSeamSpacing). Null: none.
+  const std::unordered_map<Id, double>* seamSpacing = nullptr;
 };
 
 /// Marks the junction curves of `sheets` that run along a part of `keptParts` (ascending IDs): a

@@ -76,6 +76,7 @@ VolumeCurve toWorld(const Sheet& sheet, const Polyline& line) {
   VolumeCurve curve;
   curve.closed = line.closed;
   curve.keepPoints = line.keepPoints;
+  curve.nodeSpacing = line.nodeSpacing;
   curve.points.reserve(line.points.size());
   for (PointIndex p : line.points) {
     if (p >= sheet.points.size()) {
