@@ -86,6 +86,20 @@ TEST(JunctionNodes, ACurveWithASpacingOfItsOwnIsSampledAtIt) {
   EXPECT_EQ(nodes.edge(narrow.points[0], narrow.points[1])->points.size(), 5u);
 }
 
+TEST(JunctionNodes, AnEvenPieceEndingOnACurvePointButForRoundingEndsOnIt) {
+  // 10 long in three pieces at 10/3: the first piece ends 1e-14 short of the curve point there.
+  // That point is the node (every sheet along the curve then has it), not a node 1e-14 from it
+  // that a sheet's own corner at the point would leave as a gap of its own (ISat part 2).
+  VolumeCurve curve;
+  curve.points = {{0, 0, 0}, {10.0 / 3.0 + 1e-14, 0, 0}, {10, 0, 0}};
+  const extract::JunctionNodes nodes({curve}, 10.0 / 3.0, 0.5);
+  EXPECT_TRUE(nodes.isNodePoint(curve.points[1]));
+  ASSERT_NE(nodes.edge(curve.points[0], curve.points[1]), nullptr);
+  EXPECT_TRUE(nodes.edge(curve.points[0], curve.points[1])->points.empty());
+  ASSERT_NE(nodes.edge(curve.points[1], curve.points[2]), nullptr);
+  EXPECT_EQ(nodes.edge(curve.points[1], curve.points[2])->points.size(), 1u);
+}
+
 TEST(JunctionNodes, SameNodesWhicheverWayAndWhereverTheCurveStarts) {
   // A closed square-ish curve with a bend, given from different start points and directions.
   VolumeCurve curve;

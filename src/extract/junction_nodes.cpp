@@ -51,10 +51,13 @@ struct CurveNode {
   std::size_t point = SIZE_MAX;
 };
 
-/// Walks a polyline (closed: point n is point 0 again) by arc length.
+/// A node this share of its segment's length from a curve point (or closer) is that point: even
+/// pieces that end on a point but for the rounding of their arc lengths.
+constexpr double kOnPointShare = 1e-9;
 /// Segments of a curve within this factor of the spacing (either way) are kept as they are.
 constexpr double kKeptSpacingFactor = 1.5;
 
+/// Walks a polyline (closed: point n is point 0 again) by arc length.
 struct Walk {
   const std::vector<Point3>& points;
   bool closed;
@@ -203,8 +206,9 @@ void JunctionNodes::add(const std::vector<VolumeCurve>& curves, double spacing, 
         continue;
       }
       auto [segment, t] = walk.locate(node.param);
-      if (t <= 0.0 || t >= 1.0) {  // on a curve point after all
-        nodePoints_.push_back(walk.at(t <= 0.0 ? segment : segment + 1));
+      // On a curve point after all (an even piece ending there but for rounding).
+      if (t <= kOnPointShare || t >= 1.0 - kOnPointShare) {
+        nodePoints_.push_back(walk.at(t < 0.5 ? segment : segment + 1));
         continue;
       }
       perEdge[segment].along.push_back(t);
