@@ -244,6 +244,32 @@ TEST(Pipeline, ANarrowStripAsksItsSeamForItsRowLength) {
   EXPECT_LE(nodesShared(model), 23u);
 }
 
+TEST(Pipeline, SatelliteFramesKeepTheirPiecesAndHolesAtBothSizes) {
+  // ISat part 2 (frames of channels meshed from their boundaries, patches meeting at a corner on
+  // a junction curve) and part 7 (legs with plates inside, joined where a junction curve ends at
+  // a corner): every attempt keeps the parts' boundary loops, and their pieces where the legs are
+  // meshed from their boundaries (at 4 a leg goes through a volume, which cannot yet carry the
+  // junction curves inside it where the plates meet it).
+  VOXREMESH_REQUIRE_SHARED_DECK(path, "ISat_Launch_Sm_Rgd.dat");
+  const FeModel deck = readDeck(path);
+  for (const double size : {2.0, 4.0}) {
+    FeModel model = deck;
+    RemeshSettings settings;
+    settings.targetSize = size;
+    settings.parts = {2, 7};
+    const RemeshReport report = remeshDeck(model, settings);
+    ASSERT_EQ(report.parts.size(), 2u);
+    for (const RemeshedPart& part : report.parts) {
+      EXPECT_EQ(part.reason.find("boundary loops"), std::string::npos)
+          << size << ": " << part.reason;
+      if (part.plan.part == 2 || size == 2.0) {
+        EXPECT_EQ(part.reason.find("connected pieces"), std::string::npos)
+            << size << ": " << part.reason;
+      }
+    }
+  }
+}
+
 TEST(Pipeline, DeckSeamsCountSharedNodesPerPartPairAndTJunctionEdges) {
   FeModel model = plateAndWall();
   DeckSeams seams = deckSeams(model);

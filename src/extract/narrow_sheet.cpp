@@ -91,13 +91,12 @@ struct NodeLoop {
   double gapEnd(const std::vector<LoopNode>& nodes, std::size_t j) const {
     return j + 1 < nodes.size() ? nodes[j + 1].param : nodes[0].param + length;
   }
-  /// True when nodes may go into the gap after nodes[j]: it is not a stretch between two nodes
-  /// of a junction curve.
+  /// True when nodes may go into the gap after nodes[j]: it does not run along a junction curve
+  /// (between two of its nodes, or a node and a corner of the sheet on it), whose nodes are the
+  /// curve's on every side.
   bool free(const std::vector<LoopNode>& nodes, std::size_t j) const {
     const double middle = std::fmod(0.5 * (nodes[j].param + gapEnd(nodes, j)), length);
-    return !(nodes[j].role == PointRole::Junction &&
-             nodes[(j + 1) % nodes.size()].role == PointRole::Junction &&
-             junctionEdge[loop.segmentAt(middle)] != nullptr);
+    return junctionEdge[loop.segmentAt(middle)] == nullptr;
   }
   /// A Boundary node at arc length v (wrapped into the loop).
   LoopNode nodeAt(double v) const {
