@@ -10,9 +10,9 @@
 // and then replacePartMeshes (deck_assembly.h) puts the accepted meshes back into the deck in the
 // order of planRemesh. Each sheet of a part is voxelised, extracted and optimised on its own (a
 // sheet narrower than RemeshSettings::narrowFeatureVoxels target sizes is meshed from its boundary
-// instead, src/extract/narrow_sheet.h); the sheets' meshes are then joined at their junction
-// nodes (joinAtJunctions). partVolumes builds all sheet volumes of a part at once, for the tools
-// that inspect them.
+// instead, src/extract/narrow_sheet.h, and then optimised alike); the sheets' meshes are then
+// joined at their junction nodes (joinAtJunctions). partVolumes builds all sheet volumes of a part
+// at once, for the tools that inspect them.
 #pragma once
 
 #include <cstddef>

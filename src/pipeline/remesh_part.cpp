@@ -54,12 +54,14 @@ extract::JunctionNodes sheetJunctionNodes(const Sheet& sheet, double spacing) {
 }
 
 /// One sheet's mesh from its boundary alone (narrow_sheet.h), nodes `spacing` apart along it;
-/// the hard points inside the sheet are snapped to nodes inside the mesh (a grid's).
+/// the hard points inside the sheet are snapped to nodes inside the mesh (a grid's); then, when
+/// `optimize` and settings.optimize, optimised at the spacing as a volume's mesh is.
 /// Throws extract::NarrowSheetRefusal when the sheet cannot be meshed so, or a hard point finds
 /// no node inside the mesh within `spacing`.
 QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
                           const ReferenceSurface& original, double spacing, double targetSize,
-                          double junctionSpacing, const std::vector<Point3>& hardPoints) {
+                          double junctionSpacing, const std::vector<Point3>& hardPoints,
+                          const RemeshSettings& settings, bool optimize = true) {
   extract::NarrowSheetSettings narrow;
   narrow.spacing = spacing;
   narrow.tolerance = kNarrowChordShare * targetSize;
@@ -72,6 +74,11 @@ QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
                                       std::to_string(hardPoints.size()) +
                                       " hard points inside it (nodes other keywords use) find no "
                                       "node inside its mesh");
+  if (optimize && settings.optimize) {
+    OptimizeSettings optimizeSettings = settings.optimizeSettings;
+    optimizeSettings.quality.targetSize = spacing;
+    optimizeQuadMesh(mesh, original, optimizeSettings);
+  }
   return mesh;
 }
 
@@ -138,7 +145,7 @@ QuadMesh meshThroughVolumeOrBoundary(const Sheet& sheet, const QuadMesh& surface
     const double spacing = std::min(voxel, 2.0 * sheetWidth(sheet));
     try {
       QuadMesh mesh = meshFromBoundary(sheet, surface, original, spacing, plan.targetSize,
-                                       junctionSpacing, hardPoints);
+                                       junctionSpacing, hardPoints, settings);
       size = std::min(size, boundaryMeshSize(mesh, spacing));
       return mesh;
     } catch (const extract::NarrowSheetRefusal& refusal) {
@@ -210,10 +217,12 @@ struct StopAttempts {};
 
 /// The plans of an attempt from the sheets' boundaries: each sheet `plans` meshes through a volume
 /// is meshed from its boundary where it can be (nodes one target size apart, or twice its width
-/// where that is less); empty when no sheet can be.
+/// where that is less), and not optimised (on a wide sheet, such as a wing's skin, the edits
+/// move its area and the loads on it more than the rows as made); empty when no sheet can be.
 std::vector<SheetPlan> boundaryPlans(const std::vector<Sheet>& sheets,
                                      const SheetHardPoints& hardPoints, const PartPlan& plan,
-                                     double junctionSpacing, const std::vector<SheetPlan>& plans) {
+                                     const RemeshSettings& settings, double junctionSpacing,
+                                     const std::vector<SheetPlan>& plans) {
   std::vector<SheetPlan> result = plans;
   bool any = false;
   for (std::size_t k = 0; k < sheets.size(); ++k) {
@@ -224,7 +233,7 @@ std::vector<SheetPlan> boundaryPlans(const std::vector<Sheet>& sheets,
       const ReferenceSurface original(surface);
       result[k] = {true, spacing,
                    meshFromBoundary(sheets[k], surface, original, spacing, plan.targetSize,
-                                    junctionSpacing, hardPoints[k])};
+                                    junctionSpacing, hardPoints[k], settings, false)};
       any = true;
     } catch (const extract::NarrowSheetRefusal&) {
     }
@@ -259,7 +268,7 @@ std::vector<SheetPlan> planSheets(const std::vector<Sheet>& sheets,
       const ReferenceSurface original(surface);
       plans.push_back({true, spacing,
                        meshFromBoundary(sheets[k], surface, original, spacing, plan.targetSize,
-                                        junctionSpacing, hardPoints[k])});
+                                        junctionSpacing, hardPoints[k], settings)});
       if (spacing < plan.targetSize)
         note += std::string(note.empty() ? "" : "; ") + "sheet " + std::to_string(k) + " is " +
                 formatNumber(width) + " wide: one row of elements " + formatNumber(spacing) +
@@ -375,7 +384,7 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
     // Last: every volume sheet that can be meshed from its boundary so (a tube, a cup, a box
     // whose volume mesh lost or added a loop).
     std::vector<SheetPlan> fromBoundary =
-        boundaryPlans(sheets, hardPoints, plan, junctionSpacing, plans);
+        boundaryPlans(sheets, hardPoints, plan, settings, junctionSpacing, plans);
     if (!fromBoundary.empty() && attempt(fromBoundary, false)) {
       part.reason += std::string(part.reason.empty() ? "" : "; ") +
                      "meshed from its sheets' boundaries after " + std::to_string(failures.size()) +
