@@ -285,6 +285,43 @@ TEST(Pipeline, NarrowSheetsMeshedFromTheirBoundaryAreOptimised) {
   EXPECT_TRUE(found);
 }
 
+TEST(Pipeline, AStiffenerOnALineInsideAPlateKeepsItsSeam) {
+  // A 60 x 60 plate of 3-unit quads (part 1) with a stiffener 9 tall (part 2) standing on the
+  // line y = 30, x = 15..45 inside it: the line does not split the plate's sheet. Whatever the
+  // plate's mesh, the 11 seam nodes stay shared (the plate is kept while its mesh does not
+  // carry the junction curve's nodes), never silently lost.
+  FeModel model;
+  const int n = 20;
+  auto plateNode = [&](int i, int j) { return Id(1 + j * (n + 1) + i); };
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) test::addNode(model, plateNode(i, j), 3.0 * i, 3.0 * j, 0.0);
+  auto stiffenerNode = [&](int i, int k) {
+    return k == 0 ? plateNode(i, 10) : Id(10000 + 100 * k + i);
+  };
+  for (int k = 1; k <= 3; ++k)
+    for (int i = 5; i <= 15; ++i) test::addNode(model, stiffenerNode(i, k), 3.0 * i, 30.0, 3.0 * k);
+  Id shell = 1;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      test::addShell(
+          model, shell++, 1,
+          {plateNode(i, j), plateNode(i + 1, j), plateNode(i + 1, j + 1), plateNode(i, j + 1)});
+  for (int k = 0; k < 3; ++k)
+    for (int i = 5; i < 15; ++i)
+      test::addShell(model, shell++, 2,
+                     {stiffenerNode(i, k), stiffenerNode(i + 1, k), stiffenerNode(i + 1, k + 1),
+                      stiffenerNode(i, k + 1)});
+  ASSERT_EQ(deckSeams(model).sharedNodes.at({1, 2}), 11u);
+  const RemeshReport report = remeshDeck(model, RemeshSettings{});
+  const DeckSeams after = deckSeams(model);
+  ASSERT_EQ(after.sharedNodes.count({1, 2}), 1u);
+  EXPECT_GE(after.sharedNodes.at({1, 2}), 11u);
+  for (const RemeshedPart& part : report.parts) {
+    if (part.status == PartStatus::Kept)
+      EXPECT_NE(part.reason.find("junction nodes"), std::string::npos) << part.reason;
+  }
+}
+
 TEST(Pipeline, DeckSeamsCountSharedNodesPerPartPairAndTJunctionEdges) {
   FeModel model = plateAndWall();
   DeckSeams seams = deckSeams(model);

@@ -228,6 +228,13 @@ const JunctionEdgeNodes* JunctionNodes::edge(const Point3& a, const Point3& b) c
   return it == edges_.end() ? nullptr : &it->second;
 }
 
+std::vector<Point3> JunctionNodes::nodes() const {
+  std::vector<Point3> all = nodePoints_;
+  for (const auto& [key, edge] : edges_)
+    all.insert(all.end(), edge.points.begin(), edge.points.end());
+  return all;
+}
+
 bool JunctionNodes::isNodePoint(const Point3& p) const {
   return std::binary_search(nodePoints_.begin(), nodePoints_.end(), p);
 }

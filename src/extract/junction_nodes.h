@@ -70,6 +70,10 @@ class JunctionNodes {
   /// True when p is a point of a junction curve that is itself a node.
   bool isNodePoint(const Point3& p) const;
 
+  /// Every node of every curve (curve points that are nodes, then the nodes inside edges), each
+  /// once.
+  std::vector<Point3> nodes() const;
+
  private:
   std::map<std::pair<Point3, Point3>, JunctionEdgeNodes> edges_;  ///< key: (lower, higher) point
   std::vector<Point3> nodePoints_;                                ///< sorted

@@ -1,6 +1,7 @@
 // What a part's remesh must respect of the deck around it: seams along kept parts and hard points
 // (remesh_part.h).
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <unordered_map>
 #include <unordered_set>
@@ -127,12 +128,18 @@ std::size_t snapHardPoints(QuadMesh& mesh, const std::vector<Point3>& points, do
   return placed;
 }
 
-std::size_t missingPoints(const QuadMesh& mesh, const std::vector<Point3>& points) {
+std::size_t missingPoints(const QuadMesh& mesh, const std::vector<Point3>& points,
+                          double tolerance) {
   if (points.empty()) return 0;
   std::vector<Point3> sorted = mesh.points;
   std::sort(sorted.begin(), sorted.end());
   return static_cast<std::size_t>(std::count_if(points.begin(), points.end(), [&](const Point3& p) {
-    return !std::binary_search(sorted.begin(), sorted.end(), p);
+    const Point3 low{p[0] - tolerance, -std::numeric_limits<double>::infinity(), 0.0};
+    for (auto it = std::lower_bound(sorted.begin(), sorted.end(), low);
+         it != sorted.end() && (*it)[0] <= p[0] + tolerance; ++it)
+      if (std::abs((*it)[1] - p[1]) <= tolerance && std::abs((*it)[2] - p[2]) <= tolerance)
+        return false;
+    return true;
   }));
 }
 

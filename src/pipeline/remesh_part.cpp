@@ -18,6 +18,9 @@ namespace voxremesh::pipeline {
 
 namespace {
 
+/// A junction node is a node of the part's mesh when a point lies within this share of the
+/// target size of it in every coordinate (sheets welded at a junction may differ in last bits).
+constexpr double kJunctionNodeShare = 1e-6;
 /// A narrow sheet's chords may lie this share of the target size from it: half the distance limit.
 constexpr double kNarrowChordShare = 0.125;
 /// A narrow sheet's edges across it may be this many times its width (or spacing) long.
@@ -212,6 +215,19 @@ std::string duplicateShells(const FeModel& model, Id part) {
   return {};
 }
 
+/// The nodes the junction curves of `sheets` prescribe at `spacing` (as extraction places them),
+/// each once: the seams of the part's mesh with its other sheets and parts.
+std::vector<Point3> junctionNodePositions(const std::vector<Sheet>& sheets, double spacing) {
+  std::vector<Point3> positions;
+  for (const Sheet& sheet : sheets) {
+    const std::vector<Point3> nodes = sheetJunctionNodes(sheet, spacing).nodes();
+    positions.insert(positions.end(), nodes.begin(), nodes.end());
+  }
+  std::sort(positions.begin(), positions.end());
+  positions.erase(std::unique(positions.begin(), positions.end()), positions.end());
+  return positions;
+}
+
 /// Thrown by an attempt that ends the part's attempts (out of memory, a refused budget).
 struct StopAttempts {};
 
@@ -317,6 +333,9 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
   std::string sizeNote;
   const SheetHardPoints hardPoints = placeHardPoints(sheets, surroundings.hardPoints);
   if (surroundings.seamSpacing) setSeamSpacing(sheets, *surroundings.seamSpacing, junctionSpacing);
+  const std::vector<Point3> junctionPositions = junctionNodePositions(
+      sheets,
+      settings.extract.junctionSpacing > 0.0 ? settings.extract.junctionSpacing : junctionSpacing);
   std::vector<Point3> hardPositions;
   for (const Node& node : model.nodes)
     if (surroundings.hardPoints.count(node.id)) hardPositions.push_back(node.xyz);
@@ -346,6 +365,17 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
         failures.push_back(at + std::to_string(missing) + " of its " +
                            std::to_string(hardPositions.size()) +
                            " hard points (nodes other keywords use) are not nodes of the new mesh");
+        return false;
+      }
+      const std::size_t loose =
+          part.acceptance.accepted
+              ? missingPoints(candidate, junctionPositions, kJunctionNodeShare * plan.targetSize)
+              : 0;
+      if (loose > 0) {
+        failures.push_back(at + std::to_string(loose) + " of its " +
+                           std::to_string(junctionPositions.size()) +
+                           " junction nodes (where its sheets meet each other or other parts) are "
+                           "not nodes of its mesh");
         return false;
       }
       if (!part.acceptance.accepted) {

@@ -89,8 +89,10 @@ std::vector<std::vector<Point3>> placeHardPoints(std::vector<Sheet>& sheets,
 /// @return how many of `points` found a partner
 std::size_t snapHardPoints(QuadMesh& mesh, const std::vector<Point3>& points, double reach);
 
-/// How many of `points` are not points of `mesh` (bit-identical coordinates).
-std::size_t missingPoints(const QuadMesh& mesh, const std::vector<Point3>& points);
+/// How many of `points` are not points of `mesh`: no point of it within `tolerance` in every
+/// coordinate (0: bit-identical coordinates).
+std::size_t missingPoints(const QuadMesh& mesh, const std::vector<Point3>& points,
+                          double tolerance = 0.0);
 
 /// Remeshes one part: its sheets; a voxel of the plan's target size, reduced where a sheet is
 /// narrower than settings.narrowFeatureVoxels voxels; up to 1 + settings.retries attempts, each
