@@ -85,12 +85,34 @@ QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
   return mesh;
 }
 
-/// One sheet's mesh through a volume of the given voxel size, extracted, with the hard points
-/// inside the sheet snapped to, and optimised.
-QuadMesh meshThroughVolume(const Sheet& sheet, const ReferenceSurface& original, double voxel,
-                           const RemeshSettings& settings, double junctionSpacing,
-                           const std::vector<Point3>& hardPoints, RemeshedPart& part,
-                           const StageCallback& stage) {
+/// The sheet with a boundary loop along each junction curve that runs wholly inside it (off its
+/// boundary loops: a stiffener standing on a line inside a panel), there and back: a slit whose
+/// two lips the boundary strip meets with the curve's nodes, welded into one after extraction.
+Sheet withSlits(const Sheet& sheet) {
+  std::vector<char> onLoop(sheet.points.size(), 0);
+  for (const Polyline& loop : sheet.boundaryLoops)
+    for (const PointIndex p : loop.points) onLoop[p] = 1;
+  Sheet result = sheet;
+  for (const Polyline& curve : sheet.junctionCurves) {
+    if (curve.closed || curve.points.size() < 2 ||
+        std::any_of(curve.points.begin(), curve.points.end(),
+                    [&](PointIndex p) { return onLoop[p] != 0; }))
+      continue;
+    Polyline slit;
+    slit.closed = true;
+    slit.points = curve.points;
+    slit.points.insert(slit.points.end(), curve.points.rbegin() + 1, curve.points.rend() - 1);
+    result.boundaryLoops.push_back(std::move(slit));
+  }
+  return result;
+}
+
+/// The mesh of `voxelised` (a sheet, or it withSlits) through a volume of the given voxel size,
+/// extracted, with the hard points inside the sheet snapped to, and optimised on `original`.
+QuadMesh meshVolumeOf(const Sheet& voxelised, const ReferenceSurface& original, double voxel,
+                      const RemeshSettings& settings, double junctionSpacing,
+                      const std::vector<Point3>& hardPoints, RemeshedPart& part,
+                      const StageCallback& stage) {
   VolumeSettings volumeSettings = settings.volume;
   volumeSettings.rule = VoxelSizeRule::TargetElementSize;
   volumeSettings.targetElementSize = voxel;
@@ -98,7 +120,7 @@ QuadMesh meshThroughVolume(const Sheet& sheet, const ReferenceSurface& original,
   if (extractSettings.junctionSpacing <= 0.0) extractSettings.junctionSpacing = junctionSpacing;
   if (stage) stage("volume");
   auto start = std::chrono::steady_clock::now();
-  const Volume volume = buildVolume({sheet}, volumeSettings);
+  const Volume volume = buildVolume({voxelised}, volumeSettings);
   part.volumeSeconds += since(start);
   if (stage) stage("extract");
   start = std::chrono::steady_clock::now();
@@ -114,6 +136,36 @@ QuadMesh meshThroughVolume(const Sheet& sheet, const ReferenceSurface& original,
     optimizeSettings.quality.targetSize = voxel;
     optimizeQuadMesh(mesh, original, optimizeSettings);
     part.optimizeSeconds += since(start);
+  }
+  return mesh;
+}
+
+/// One sheet's mesh through a volume of the given voxel size (meshVolumeOf). A volume cannot
+/// hold a line inside a sheet: where the mesh misses nodes of junction curves wholly inside the
+/// sheet, the sheet is meshed again with those curves as slits (withSlits), and that mesh is
+/// taken when it has every junction node (else the first stays, and the part's check of its
+/// junction nodes refuses it).
+QuadMesh meshThroughVolume(const Sheet& sheet, const ReferenceSurface& original, double voxel,
+                           const RemeshSettings& settings, double junctionSpacing,
+                           const std::vector<Point3>& hardPoints, RemeshedPart& part,
+                           const StageCallback& stage) {
+  QuadMesh mesh =
+      meshVolumeOf(sheet, original, voxel, settings, junctionSpacing, hardPoints, part, stage);
+  const Sheet slitted = withSlits(sheet);
+  if (slitted.boundaryLoops.size() == sheet.boundaryLoops.size()) return mesh;
+  const std::vector<Point3> nodes = sheetJunctionNodes(sheet, settings.extract.junctionSpacing > 0.0
+                                                                  ? settings.extract.junctionSpacing
+                                                                  : junctionSpacing)
+                                        .nodes();
+  const double tolerance = kJunctionNodeShare * voxel;
+  if (missingPoints(mesh, nodes, tolerance) == 0) return mesh;
+  try {
+    QuadMesh slit =
+        meshVolumeOf(slitted, original, voxel, settings, junctionSpacing, hardPoints, part, stage);
+    if (missingPoints(slit, nodes, tolerance) == 0) return slit;
+  } catch (const SettingError&) {
+    throw;
+  } catch (const std::runtime_error&) {  // the first mesh stays
   }
   return mesh;
 }
