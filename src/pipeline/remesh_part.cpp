@@ -42,6 +42,13 @@ struct SheetPlan {
 /// What the sheets of one part must keep: per sheet, the hard points inside it (placeHardPoints).
 using SheetHardPoints = std::vector<std::vector<Point3>>;
 
+/// The spacing extraction places a part's junction nodes at: the one the settings ask for, else
+/// the part's (PartSurroundings::junctionSpacing).
+double extractJunctionSpacing(const RemeshSettings& settings, double junctionSpacing) {
+  return settings.extract.junctionSpacing > 0.0 ? settings.extract.junctionSpacing
+                                                : junctionSpacing;
+}
+
 /// The junction nodes of a sheet's junction curves, as extraction computes them (extract.cpp).
 extract::JunctionNodes sheetJunctionNodes(const Sheet& sheet, double spacing) {
   std::vector<VolumeCurve> curves;
@@ -69,8 +76,9 @@ QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
   narrow.spacing = spacing;
   narrow.tolerance = kNarrowChordShare * targetSize;
   narrow.maxChord = kNarrowChordWidths * std::max(sheetWidth(sheet), spacing);
-  QuadMesh mesh = extract::meshNarrowSheet(sheet, surface, original,
-                                           sheetJunctionNodes(sheet, junctionSpacing), narrow);
+  QuadMesh mesh = extract::meshNarrowSheet(
+      sheet, surface, original,
+      sheetJunctionNodes(sheet, extractJunctionSpacing(settings, junctionSpacing)), narrow);
   const std::size_t placed = snapHardPoints(mesh, hardPoints, spacing);
   if (placed < hardPoints.size())
     throw extract::NarrowSheetRefusal(std::to_string(hardPoints.size() - placed) + " of its " +
@@ -117,7 +125,7 @@ QuadMesh meshVolumeOf(const Sheet& voxelised, const ReferenceSurface& original, 
   volumeSettings.rule = VoxelSizeRule::TargetElementSize;
   volumeSettings.targetElementSize = voxel;
   ExtractSettings extractSettings = settings.extract;
-  if (extractSettings.junctionSpacing <= 0.0) extractSettings.junctionSpacing = junctionSpacing;
+  extractSettings.junctionSpacing = extractJunctionSpacing(settings, junctionSpacing);
   if (stage) stage("volume");
   auto start = std::chrono::steady_clock::now();
   const Volume volume = buildVolume({voxelised}, volumeSettings);
@@ -153,10 +161,8 @@ QuadMesh meshThroughVolume(const Sheet& sheet, const ReferenceSurface& original,
       meshVolumeOf(sheet, original, voxel, settings, junctionSpacing, hardPoints, part, stage);
   const Sheet slitted = withSlits(sheet);
   if (slitted.boundaryLoops.size() == sheet.boundaryLoops.size()) return mesh;
-  const std::vector<Point3> nodes = sheetJunctionNodes(sheet, settings.extract.junctionSpacing > 0.0
-                                                                  ? settings.extract.junctionSpacing
-                                                                  : junctionSpacing)
-                                        .nodes();
+  const std::vector<Point3> nodes =
+      sheetJunctionNodes(sheet, extractJunctionSpacing(settings, junctionSpacing)).nodes();
   const double tolerance = kJunctionNodeShare * voxel;
   if (missingPoints(mesh, nodes, tolerance) == 0) return mesh;
   try {
@@ -385,9 +391,8 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
   std::string sizeNote;
   const SheetHardPoints hardPoints = placeHardPoints(sheets, surroundings.hardPoints);
   if (surroundings.seamSpacing) setSeamSpacing(sheets, *surroundings.seamSpacing, junctionSpacing);
-  const std::vector<Point3> junctionPositions = junctionNodePositions(
-      sheets,
-      settings.extract.junctionSpacing > 0.0 ? settings.extract.junctionSpacing : junctionSpacing);
+  const std::vector<Point3> junctionPositions =
+      junctionNodePositions(sheets, extractJunctionSpacing(settings, junctionSpacing));
   std::vector<Point3> hardPositions;
   for (const Node& node : model.nodes)
     if (surroundings.hardPoints.count(node.id)) hardPositions.push_back(node.xyz);
