@@ -285,6 +285,28 @@ TEST(Pipeline, NarrowSheetsMeshedFromTheirBoundaryAreOptimised) {
   EXPECT_TRUE(found);
 }
 
+TEST(Pipeline, AWingSkinIsRemeshedSideBySideWithinItsDistanceAtItsTrailingEdge) {
+  // The wingbox skin (part 2) wraps round a wing section whose trailing edge is a wedge a few
+  // degrees wide: in one volume its two sides merge there (distance 2.3 against a limit of 0.75
+  // at size 3). Split at the trailing edge and along the leading edge, each side has its own
+  // volume, and the two meshes meet on those lines.
+  VOXREMESH_REQUIRE_SHARED_DECK(path, "wingbox_stitched_together-000.bdf");
+  FeModel model = readDeck(path);
+  RemeshSettings settings;
+  settings.targetSize = 3.0;
+  const RemeshReport report = remeshDeck(model, settings);
+  bool found = false;
+  for (const RemeshedPart& part : report.parts) {
+    if (part.plan.part != 2) continue;
+    found = true;
+    EXPECT_NE(part.status, PartStatus::Kept) << part.reason;
+    EXPECT_LE(part.acceptance.distance, part.acceptance.distanceLimit) << part.reason;
+    EXPECT_EQ(part.acceptance.loopsAfter, part.acceptance.loopsBefore);
+    EXPECT_EQ(part.acceptance.componentsAfter, part.acceptance.componentsBefore);
+  }
+  EXPECT_TRUE(found);
+}
+
 /// A 60 x 60 plate of 3-unit quads in z = 0 (part 1) with a stiffener 9 tall of 3-unit quads
 /// (part 2) standing on the line y = 30 from x = 3 x `from` to 3 x `to`: they share its nodes.
 FeModel plateWithStiffener(int from, int to) {

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <random>
 #include <regex>
 #include <set>
@@ -656,6 +657,89 @@ TEST(Sheets, GentleBendIsNoFeatureAtTheDefaultAngle) {
   ASSERT_EQ(sheets[0].featureLines.size(), 1u);
   EXPECT_EQ(sheets[0].featureLines[0].points.size(), 7u);
   EXPECT_EQ(featurePointIds(sheets[0]).size(), 6u);
+}
+
+TEST(Sheets, AFlangeFoldedBackIsTwoSheetsMeetingAtTheFold) {
+  // Bent by 150 degrees the flange runs back over the plate, 30 degrees apart: a fold. Bent by
+  // 110 degrees it is an ordinary sharp bend, held by one volume.
+  const FeModel folded = bentFlange(150.0);
+  const std::vector<Sheet> sheets = buildSheets(folded, 1);
+  ASSERT_EQ(sheets.size(), 2u);
+  expectValidSheets(folded, sheets);
+  EXPECT_EQ(sheets[0].faces.size(), 24u);  // the plate, 6 x 4
+  EXPECT_EQ(sheets[1].faces.size(), 18u);  // the flange, 6 x 3
+  std::vector<Id> bend;
+  for (int i = 0; i <= 6; ++i) bend.push_back(flangeNode(i, 4));
+  for (const Sheet& sheet : sheets) {
+    ASSERT_EQ(sheet.junctionCurves.size(), 1u);
+    expectSameLine(nodeIds(sheet, sheet.junctionCurves[0]), bend);
+    EXPECT_TRUE(sheet.featureLines.empty());
+  }
+  EXPECT_EQ(findFoldCuts(folded).size(), 6u);
+  const FeModel bent = bentFlange(110.0);
+  EXPECT_EQ(buildSheets(bent, 1).size(), 1u);
+  EXPECT_TRUE(findFoldCuts(bent).empty());
+}
+
+namespace {
+
+// A closed wing section extruded along y (4 rows of unit length): 8 nodes round the section,
+// from the trailing edge (x = 10, a 30-degree wedge) over the upper side to the rounded leading
+// edge (x = 0) and back below; node (k, j) has ID 1 + 8 j + k, k = 0 the trailing edge, k = 4 the
+// leading edge.
+FeModel wingSection() {
+  const std::array<std::array<double, 2>, 8> section{{{10.0, 0.0},
+                                                      {7.0, 0.8},
+                                                      {4.0, 1.2},
+                                                      {1.0, 1.0},
+                                                      {0.0, 0.0},
+                                                      {1.0, -1.0},
+                                                      {4.0, -1.2},
+                                                      {7.0, -0.8}}};
+  FeModel m;
+  m.partOrAdd(1, "skin");
+  for (int j = 0; j <= 4; ++j)
+    for (int k = 0; k < 8; ++k)
+      addNode(m, 1 + 8 * j + k, section[std::size_t(k)][0], double(j), section[std::size_t(k)][1]);
+  for (int j = 0; j < 4; ++j)
+    for (int k = 0; k < 8; ++k) {
+      const Id a = 1 + 8 * j + k, b = 1 + 8 * j + (k + 1) % 8;
+      addShell(m, nextShellId(m), 1, {a, b, b + 8, a + 8});
+    }
+  return m;
+}
+
+}  // namespace
+
+TEST(Sheets, AWingSkinIsSplitAtItsTrailingEdgeAndAlongItsLeadingEdge) {
+  const FeModel m = wingSection();
+  const std::vector<Sheet> sheets = buildSheets(m, 1);
+  ASSERT_EQ(sheets.size(), 2u);
+  expectValidSheets(m, sheets);
+  const std::vector<Id> trailing{1, 9, 17, 25, 33}, leading{5, 13, 21, 29, 37};
+  for (const Sheet& sheet : sheets) {
+    EXPECT_EQ(sheet.faces.size(), 16u);  // one side of the wing each
+    ASSERT_EQ(sheet.junctionCurves.size(), 2u);
+    std::vector<std::vector<Id>> curves;
+    for (const Polyline& curve : sheet.junctionCurves) {
+      std::vector<Id> ids = nodeIds(sheet, curve);
+      if (ids.front() > ids.back()) std::reverse(ids.begin(), ids.end());
+      curves.push_back(ids);
+    }
+    std::sort(curves.begin(), curves.end());
+    EXPECT_EQ(curves[0], trailing);
+    EXPECT_EQ(curves[1], leading);
+  }
+  // A model holding only some of the skin's shells splits them where the whole skin is split.
+  FeModel piece = m;
+  piece.shells.resize(12);
+  SheetSettings settings;
+  settings.foldCuts = std::make_shared<const std::vector<std::array<Id, 2>>>(findFoldCuts(m));
+  std::size_t junctionEdges = 0;
+  for (const Sheet& sheet : buildSheets(piece, 1, settings))
+    junctionEdges += polylineEdges(sheet.junctionCurves);
+  // Row 0 of the trailing and of the leading edge in both sheets, row 1 in the upper one only.
+  EXPECT_EQ(junctionEdges, 6u);
 }
 
 TEST(Sheets, BendAwayFromTheNormalIsAFeatureToo) {

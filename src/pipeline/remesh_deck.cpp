@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <exception>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <unordered_map>
@@ -239,9 +240,15 @@ std::size_t RemeshReport::count(PartStatus status) const {
       parts.begin(), parts.end(), [&](const RemeshedPart& part) { return part.status == status; }));
 }
 
-RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& settings,
+RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
                         const RemeshProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
+  // The part models hold only the shells around each part: its sheets are split at the folds
+  // found on the whole deck.
+  RemeshSettings settings = asked;
+  if (!settings.sheets.foldCuts)
+    settings.sheets.foldCuts =
+        std::make_shared<const std::vector<std::array<Id, 2>>>(findFoldCuts(deck));
   RemeshReport report;
   const std::vector<PartPlan> plans = planRemesh(deck, settings);
   report.parts.resize(plans.size());

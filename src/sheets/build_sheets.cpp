@@ -1,4 +1,5 @@
 // buildSheets and buildAllSheets: the steps of sheet_internal.h, per part.
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <string>
@@ -32,7 +33,7 @@ void checkSettings(const SheetSettings& settings) {
 std::vector<Sheet> partSheets(const sheets::ModelContext& context, Index entry,
                               const SheetSettings& settings, std::vector<Index>& localOf) {
   const sheets::PartMesh part = sheets::makePartMesh(context, entry, localOf);
-  const sheets::Orientation orientation = sheets::orientComponents(context.model, part);
+  const sheets::Orientation orientation = sheets::orientComponents(context, part);
   std::vector<sheets::SheetDraft> drafts = sheets::splitSheets(context, part, orientation);
   // The curves of each sheet depend on that sheet only.
   tbb::parallel_for(std::size_t{0}, drafts.size(), [&](std::size_t i) {
@@ -50,7 +51,7 @@ std::vector<Sheet> partSheets(const sheets::ModelContext& context, Index entry,
 
 std::vector<Sheet> buildSheets(const FeModel& model, Id part, const SheetSettings& settings) {
   checkSettings(settings);
-  const sheets::ModelContext context = sheets::makeModelContext(model);
+  const sheets::ModelContext context = sheets::makeModelContext(model, settings);
   for (Index entry = 0; entry < context.partIds.size(); ++entry)
     if (context.partIds[entry] == part) {
       std::vector<Index> localOf(model.nodes.size(), kNoIndex);
@@ -59,9 +60,21 @@ std::vector<Sheet> buildSheets(const FeModel& model, Id part, const SheetSetting
   return {};
 }
 
+std::vector<std::array<Id, 2>> findFoldCuts(const FeModel& model) {
+  const sheets::ModelContext context = sheets::makeModelContext(model, SheetSettings{});
+  std::vector<std::array<Id, 2>> cuts;
+  cuts.reserve(context.foldCuts.size());
+  for (const auto& [a, b] : context.foldCuts) {
+    const Id u = model.nodes[a].id, v = model.nodes[b].id;
+    cuts.push_back({std::min(u, v), std::max(u, v)});
+  }
+  std::sort(cuts.begin(), cuts.end());
+  return cuts;
+}
+
 std::vector<Sheet> buildAllSheets(const FeModel& model, const SheetSettings& settings) {
   checkSettings(settings);
-  const sheets::ModelContext context = sheets::makeModelContext(model);
+  const sheets::ModelContext context = sheets::makeModelContext(model, settings);
   const std::size_t parts = context.partIds.size();
   std::vector<std::vector<Sheet>> perPart(parts);
   std::vector<std::exception_ptr> errors(parts);

@@ -1,6 +1,7 @@
 // Internal steps of buildSheets (include/voxremesh/sheets.h), one file each:
 //   sheet_model.cpp        what is computed once per model (corners, parts, nodes shared by parts)
 //   sheet_orientation.cpp  components across manifold edges and their consistent orientation
+//   sheet_folds.cpp        the edges where sheets are split at acute folds
 //   sheet_splitting.cpp    the sheets' faces and points (joining or cutting at non-manifold edges)
 //   sheet_boundary.cpp     boundary loops
 //   sheet_features.cpp     feature lines and feature points
@@ -64,21 +65,34 @@ struct ModelContext {
   /// The shells using node v (model node index) are shellsAt[shellsBegin[v] .. shellsBegin[v+1]).
   std::vector<Index> shellsBegin;
   std::vector<Index> shellsAt;
+  /// Inner edges where a part's faces are split at an acute fold (see "Folds" in sheets.h): model
+  /// node index pairs, lower first, ascending.
+  std::vector<std::array<Index, 2>> foldCuts;
+
+  /// The edge between nodes u and v (model node indices) is a fold cut.
+  bool foldCut(Index u, Index v) const;
 
   /// Nodes u and v (model node indices) are both used by shells of one part entry other than
   /// `part`.
   bool sharedWithOtherPart(Index u, Index v, Index part) const;
 
   /// True when junction curves must end at node v (model node index), whichever part or sheet
-  /// they are found from: the model's seam edges at v (edges of three or more shells, or of
-  /// shells of two or more parts) are not exactly two, or the two are edges of different sets of
-  /// parts. Every part meeting at v then cuts its curves there, so that both sides of a seam
-  /// sample the same pieces between the same ends.
+  /// they are found from: the model's seam edges at v (edges of three or more shells, of shells
+  /// of two or more parts, or fold cuts) are not exactly two, or the two are edges of different
+  /// sets of parts. Every part meeting at v then cuts its curves there, so that both sides of a
+  /// seam sample the same pieces between the same ends.
   bool seamStop(Index v) const;
 };
 
-/// Builds the context of `model`. Throws std::invalid_argument as model::shellCorners does.
-ModelContext makeModelContext(const FeModel& model);
+/// Builds the context of `model`: its fold cuts are settings.foldCuts (those whose nodes the model
+/// has) when given, else found on the model itself (findFoldCuts). Throws std::invalid_argument as
+/// model::shellCorners does.
+ModelContext makeModelContext(const FeModel& model, const SheetSettings& settings);
+
+/// The fold cuts of every part of the context's model (see "Folds" in sheets.h), found with the
+/// context's own fold cuts ignored: model node index pairs, lower first, ascending. A part that
+/// cannot be oriented has none.
+std::vector<std::array<Index, 2>> findFoldCuts(const ModelContext& context);
 
 /// The faces of one part: the shells with a surface, with part-local node numbers and adjacency.
 struct PartMesh {
@@ -103,10 +117,10 @@ struct Orientation {
   Index componentCount = 0;
 };
 
-/// Splits the faces into components across manifold edges and orients each consistently, keeping
-/// the majority orientation. Throws InputError naming the part, a shell and an edge when a
-/// component is not orientable.
-Orientation orientComponents(const FeModel& model, const PartMesh& part);
+/// Splits the faces into components across manifold edges that are not fold cuts of the context
+/// and orients each consistently, keeping the majority orientation. Throws InputError naming the
+/// part, a shell and an edge when a component is not orientable.
+Orientation orientComponents(const ModelContext& context, const PartMesh& part);
 
 /// One sheet with the topology its curves are found from.
 struct SheetDraft {

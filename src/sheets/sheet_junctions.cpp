@@ -1,5 +1,5 @@
-// Junction curves: where a sheet met other sheets of its part (non-manifold edges) or shared
-// nodes with another part; cut where the model's seams end or change partners
+// Junction curves: where a sheet met other sheets of its part (non-manifold edges, fold cuts) or
+// shared nodes with another part; cut where the model's seams end or change partners
 // (ModelContext::seamStop).
 #include "sheets/sheet_internal.h"
 
@@ -14,7 +14,8 @@ void findJunctions(SheetDraft& draft, const ModelContext& context, const PartMes
     const Index partEdge = draft.partEdge[e];
     const ShellEdges::Edge& nodes = part.edges.edge(partEdge);
     const Index a = part.nodes[nodes.a], b = part.nodes[nodes.b];
-    if (!part.edges.isNonManifold(partEdge) && !context.sharedWithOtherPart(a, b, part.partEntry))
+    if (!part.edges.isNonManifold(partEdge) && !context.sharedWithOtherPart(a, b, part.partEntry) &&
+        !context.foldCut(a, b))
       continue;
     chosen.push_back(e);
     // The sheet edge's points in the order of the part edge's nodes (matched by node ID).

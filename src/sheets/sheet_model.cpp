@@ -28,6 +28,11 @@ bool ModelContext::sharedWithOtherPart(Index u, Index v, Index part) const {
   return false;
 }
 
+bool ModelContext::foldCut(Index u, Index v) const {
+  const std::array<Index, 2> key{std::min(u, v), std::max(u, v)};
+  return std::binary_search(foldCuts.begin(), foldCuts.end(), key);
+}
+
 bool ModelContext::seamStop(Index v) const {
   // The edges at v: the other node, how many shells have the edge, and their part entries.
   struct EdgeAtNode {
@@ -54,15 +59,18 @@ bool ModelContext::seamStop(Index v) const {
   }
   std::vector<const EdgeAtNode*> seams;
   for (EdgeAtNode& e : edges) {
-    if (e.shells < 3 && e.entries.size() < 2) continue;
+    if (e.shells < 3 && e.entries.size() < 2 && !foldCut(v, e.other)) continue;
     std::sort(e.entries.begin(), e.entries.end());
     seams.push_back(&e);
   }
   return seams.size() != 2 || seams[0]->entries != seams[1]->entries;
 }
 
-ModelContext makeModelContext(const FeModel& model) {
-  ModelContext context{model, model::shellCorners(model), {}, {}, {}, {}, {}, {}, {}, {}};
+namespace {
+
+/// The context without fold cuts.
+ModelContext baseContext(const FeModel& model) {
+  ModelContext context{model, model::shellCorners(model), {}, {}, {}, {}, {}, {}, {}, {}, {}};
 
   // Entries: the model's parts in order, then undefined parts named by shells, ascending; parts
   // without shells are dropped afterwards.
@@ -155,6 +163,25 @@ ModelContext makeModelContext(const FeModel& model) {
     context.sharedBegin[v + 1] += context.sharedBegin[v];
   context.sharedParts.reserve(pairs.size());
   for (const auto& pair : pairs) context.sharedParts.push_back(pair.second);
+  return context;
+}
+
+}  // namespace
+
+ModelContext makeModelContext(const FeModel& model, const SheetSettings& settings) {
+  ModelContext context = baseContext(model);
+  if (!settings.foldCuts) {
+    context.foldCuts = findFoldCuts(context);
+    return context;
+  }
+  const std::unordered_map<Id, std::size_t> indexOf = model.nodeIndex();
+  for (const std::array<Id, 2>& cut : *settings.foldCuts) {
+    const auto a = indexOf.find(cut[0]), b = indexOf.find(cut[1]);
+    if (a == indexOf.end() || b == indexOf.end()) continue;
+    context.foldCuts.push_back(
+        {Index(std::min(a->second, b->second)), Index(std::max(a->second, b->second))});
+  }
+  std::sort(context.foldCuts.begin(), context.foldCuts.end());
   return context;
 }
 

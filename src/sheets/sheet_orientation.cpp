@@ -26,7 +26,7 @@ namespace {
 
 }  // namespace
 
-Orientation orientComponents(const FeModel& model, const PartMesh& part) {
+Orientation orientComponents(const ModelContext& context, const PartMesh& part) {
   const ShellEdges& edges = part.edges;
   const std::size_t n = part.corners.size();
   Orientation result;
@@ -45,6 +45,8 @@ Orientation orientComponents(const FeModel& model, const PartMesh& part) {
       for (unsigned side = 0; side < part.corners[f].count; ++side) {
         const Index e = edges.shellEdge(f, side);
         if (!edges.isManifold(e)) continue;
+        const ShellEdges::Edge& ends = edges.edge(e);
+        if (context.foldCut(part.nodes[ends.a], part.nodes[ends.b])) continue;
         const ShellEdges::IncidenceRange on = edges.incidences(e);
         const bool firstIsMine = on[0].shell == f && on[0].side == side;
         const ShellEdges::Incidence& mine = firstIsMine ? on[0] : on[1];
@@ -58,7 +60,7 @@ Orientation orientComponents(const FeModel& model, const PartMesh& part) {
           result.flipped[g] = required;
           queue.push_back(g);
         } else if (result.flipped[g] != required) {
-          notOrientable(model, part, f, g, e);
+          notOrientable(context.model, part, f, g, e);
         }
       }
     }

@@ -89,12 +89,15 @@ void joinOrCut(PartSplit& split) {
   }
 }
 
-// The face joined to `position` across part edge `e`, or kNoIndex.
+// The face joined to `position` across part edge `e`, or kNoIndex (also across a fold cut,
+// whose faces lie in different components).
 Index partnerAcross(const PartSplit& split, Index position, Index e) {
   const ShellEdges& edges = split.part.edges;
   if (edges.isManifold(e)) {
     const ShellEdges::IncidenceRange on = edges.incidences(e);
-    return on[0].shell == position ? on[1].shell : on[0].shell;
+    const Index other = on[0].shell == position ? on[1].shell : on[0].shell;
+    const std::vector<Index>& component = split.orientation.component;
+    return component[other] == component[position] ? other : kNoIndex;
   }
   if (!edges.isNonManifold(e)) return kNoIndex;
   auto it = std::lower_bound(split.glues.begin(), split.glues.end(), e,
