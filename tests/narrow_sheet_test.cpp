@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <map>
+#include <memory>
 #include <set>
 #include <vector>
 
@@ -56,8 +57,8 @@ FeModel taperedStrip(double across, double shift, double scale) {
 
 /// Meshes the part's one sheet from its boundary with nodes `spacing` apart.
 QuadMesh meshStrip(const FeModel& model, Id part, double spacing, double tolerance = 0.1,
-                   double junctionSpacing = 0.0) {
-  const std::vector<Sheet> sheets = buildSheets(model, part);
+                   double junctionSpacing = 0.0, const SheetSettings& sheetSettings = {}) {
+  const std::vector<Sheet> sheets = buildSheets(model, part, sheetSettings);
   EXPECT_EQ(sheets.size(), 1u);
   const QuadMesh surface = pipeline::sheetSurface(sheets.front());
   const ReferenceSurface reference(surface);
@@ -133,11 +134,17 @@ TEST(NarrowSheet, AJunctionThroughTheMiddleCutsTheSheetAndBothSidesShareItsNodes
     model.shells.push_back(
         {Id(500 + i), 3, {Id(i + 14), Id(i + 15), base + Id(i + 1), base + Id(i)}, 4});
   model.partOrAdd(3);
-  const std::vector<Sheet> sheets = buildSheets(model, 1);
+  // buildSheets would cut the strip along the seam itself (sheets.h, "Seams inside a sheet");
+  // without cuts the strip is one sheet with the junction curve inside, as a fin of its own
+  // part would leave it.
+  SheetSettings uncut;
+  uncut.sheetCuts = std::make_shared<const std::vector<std::array<Id, 2>>>();
+  EXPECT_EQ(buildSheets(model, 1).size(), 2u);
+  const std::vector<Sheet> sheets = buildSheets(model, 1, uncut);
   ASSERT_EQ(sheets.size(), 1u);
   const std::vector<extract::SheetPatch> patches = extract::sheetPatches(sheets.front());
   ASSERT_EQ(patches.size(), 2u);
-  const QuadMesh mesh = meshStrip(model, 1, 4.0, 0.1, 4.0);
+  const QuadMesh mesh = meshStrip(model, 1, 4.0, 0.1, 4.0, uncut);
   EXPECT_EQ(triangleCount(mesh), 0u);
   EXPECT_NEAR(area(mesh), 24.0 * 3.0, 1e-9);
   // The middle line's nodes are shared: one node per junction node, each used by faces above

@@ -675,10 +675,10 @@ TEST(Sheets, AFlangeFoldedBackIsTwoSheetsMeetingAtTheFold) {
     expectSameLine(nodeIds(sheet, sheet.junctionCurves[0]), bend);
     EXPECT_TRUE(sheet.featureLines.empty());
   }
-  EXPECT_EQ(findFoldCuts(folded).size(), 6u);
+  EXPECT_EQ(findSheetCuts(folded).size(), 6u);
   const FeModel bent = bentFlange(110.0);
   EXPECT_EQ(buildSheets(bent, 1).size(), 1u);
-  EXPECT_TRUE(findFoldCuts(bent).empty());
+  EXPECT_TRUE(findSheetCuts(bent).empty());
 }
 
 namespace {
@@ -734,7 +734,7 @@ TEST(Sheets, AWingSkinIsSplitAtItsTrailingEdgeAndAlongItsLeadingEdge) {
   FeModel piece = m;
   piece.shells.resize(12);
   SheetSettings settings;
-  settings.foldCuts = std::make_shared<const std::vector<std::array<Id, 2>>>(findFoldCuts(m));
+  settings.sheetCuts = std::make_shared<const std::vector<std::array<Id, 2>>>(findSheetCuts(m));
   std::size_t junctionEdges = 0;
   for (const Sheet& sheet : buildSheets(piece, 1, settings))
     junctionEdges += polylineEdges(sheet.junctionCurves);
@@ -902,6 +902,50 @@ TEST(Sheets, PartsSharingARowOfNodesHaveTheSeamAsAJunctionCurve) {
   }
   EXPECT_TRUE(buildSheets(m, 5).empty());
   EXPECT_TRUE(buildSheets(m, 77).empty());
+}
+
+namespace {
+
+// A plate of 8 x 6 unit quads in z = 0 (part 1, node (i, j) ID 1 + 9 j + i) and a web of part 2
+// standing on the line y = 3 from x = `from` to x = `to`, sharing the plate's nodes there.
+FeModel plateWithWeb(int from, int to) {
+  FeModel m;
+  m.partOrAdd(1, "plate");
+  m.partOrAdd(2, "web");
+  addSheet(m, 1, 1, 8, 6, [](int i, int j) { return Vec3{double(i), double(j), 0.0}; });
+  for (int i = from; i <= to; ++i) addNode(m, 1001 + i, double(i), 3.0, 1.0);
+  for (int i = from; i < to; ++i)
+    addShell(m, nextShellId(m), 2,
+             {Id(1 + 27 + i), Id(1 + 27 + i + 1), Id(1002 + i), Id(1001 + i)});
+  return m;
+}
+
+}  // namespace
+
+TEST(Sheets, ASeamThroughAPlateCutsItAndAnEndInsideItIsExtendedToTheEdge) {
+  // The web stands on x = 0..5 of the line y = 3: the seam is a cut, and at its end inside the
+  // plate (x = 5) it runs on straight to the far edge (x = 8): two sheets, 24 faces each, both
+  // with the whole line as a junction curve.
+  const FeModel m = plateWithWeb(0, 5);
+  expectValidSheets(m, buildAllSheets(m));
+  const std::vector<Sheet> sheets = buildSheets(m, 1);
+  ASSERT_EQ(sheets.size(), 2u);
+  std::vector<Id> line;
+  for (int i = 0; i <= 8; ++i) line.push_back(Id(1 + 27 + i));
+  for (const Sheet& sheet : sheets) {
+    EXPECT_EQ(sheet.faces.size(), 24u);
+    std::vector<Id> joined;
+    for (const Polyline& curve : sheet.junctionCurves) {
+      std::vector<Id> ids = nodeIds(sheet, curve);
+      if (ids.front() > ids.back()) std::reverse(ids.begin(), ids.end());
+      joined.insert(joined.end(), ids.begin() + (joined.empty() ? 0 : 1), ids.end());
+    }
+    EXPECT_EQ(joined, line);  // the seam (0..5), then its extension (5..8), one after the other
+  }
+  // A web wholly inside (x = 2..5) is extended from both ends.
+  const FeModel inner = plateWithWeb(2, 5);
+  EXPECT_EQ(buildSheets(inner, 1).size(), 2u);
+  EXPECT_EQ(findSheetCuts(inner).size(), 8u);
 }
 
 TEST(Sheets, JunctionCurvesEndWhereTheSeamChangesItsPartner) {

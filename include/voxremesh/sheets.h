@@ -9,7 +9,7 @@
 //   belong to no sheet. A quad with one repeated corner (a-a-b-c) is the triangle a-b-c.
 // - Splitting. An edge of the part is manifold when exactly two faces use it, non-manifold when
 //   three or more do. A sheet is a maximal set of faces connected across manifold edges that are
-//   not fold cuts; sheets are ordered by their first face, faces by their order in the model.
+//   not cuts (below); sheets are ordered by their first face, faces by their order in the model.
 // - Folds. A manifold edge whose faces' normals (in a consistent orientation) differ by more than
 //   120 degrees is a fold: its two sides open at less than 60 degrees (a trailing edge, a hem)
 //   and lie closer to each other than to the fold, too close for one volume to hold both. The
@@ -18,8 +18,19 @@
 //   along), and the inner edges between faces of different colours are the fold cuts: the folds
 //   themselves and a line where the two sides' regions meet (along a wing's leading edge). Each
 //   side becomes a sheet of its own, meeting the other at junction curves along the cuts, so that
-//   each gets its own volume. findFoldCuts finds them on a whole deck; SheetSettings::foldCuts
-//   hands them to buildSheets on a piece of it.
+//   each gets its own volume.
+// - Seams inside a sheet. A seam with another part (edges whose nodes both parts' shells use)
+//   that runs through the inside of the part, over edges with two of its faces (a stiffener
+//   standing on a line of a panel), is a cut: the panel is split along it, so that the seam lies
+//   on the boundaries of the sheets that meet there and every sheet's mesh carries its nodes.
+//   Where such a seam ends inside the part, away from its boundary and from other curves, it is
+//   extended along the part's edges, each turning less than 45 degrees from the seam's last
+//   edge, to the first node on the boundary, another curve or a fold cut; an end that reaches
+//   none is not extended.
+// - Cuts. Fold cuts, seams inside a sheet and their extensions are the part's cuts. findSheetCuts
+// finds them on a whole
+//   deck; SheetSettings::sheetCuts hands them to buildSheets on a piece of it, so that both parts
+//   of a seam see the same cuts.
 // - Orientation. Each sheet is oriented by a breadth-first walk from its first face across its
 //   manifold edges, flipping faces so that the two faces of every manifold edge run along it in
 //   opposite directions. Then the orientation that more of the original faces had is kept (on a
@@ -61,7 +72,7 @@
 //   boundary loop or a feature polyline turns by more than cornerAngleDeg (the angle between the
 //   incoming and the outgoing segment; a point next to a zero-length segment is no corner).
 // - Junction curves. Sheet edges whose part edge is non-manifold (where this sheet met other
-//   sheets of the part, or itself) or a fold cut, and sheet edges whose two nodes are both used by
+//   sheets of the part, or itself) or a cut, and sheet edges whose two nodes are both used by
 //   shells of one same other part (a seam where parts share nodes). Chained into polylines that
 //   stop where junction edges end or branch; without any stop, closed. A single node shared with
 //   another part (a spot connection) is no curve and is not reported. The seam rule looks at nodes
@@ -124,18 +135,19 @@ struct SheetSettings {
   double featureAngleDeg = 45.0;
   double cornerAngleDeg = 30.0;  ///< a boundary or feature-line point is a corner when the curve
                                  ///< turns by more than this there
-  /// The fold cuts (node ID pairs, findFoldCuts) of the whole deck the model given to buildSheets
+  /// The cuts (node ID pairs, findSheetCuts) of the whole deck the model given to buildSheets
   /// was taken from, so that a part's sheets and their seams do not depend on how much of the
   /// deck around it that model holds; null: found on the model given.
-  std::shared_ptr<const std::vector<std::array<Id, 2>>> foldCuts;
+  std::shared_ptr<const std::vector<std::array<Id, 2>>> sheetCuts;
 };
 
-/// The edges where the sheets of `model`'s parts are split at acute folds (see "Folds" at the top
-/// of the file): node ID pairs, lower first, ascending; parts in parallel, deterministic. A part
-/// that cannot be oriented has none.
+/// The edges where the sheets of `model`'s parts are cut: at folds and along seams inside a sheet
+/// (see "Cuts" at the top of the file): node ID pairs,
+/// lower first, ascending; parts in parallel, deterministic. A part that cannot be oriented has
+/// none.
 /// @param model  the model; preconditions as for buildSheets
 /// Throws std::invalid_argument as buildSheets does for a model that breaks its preconditions.
-std::vector<std::array<Id, 2>> findFoldCuts(const FeModel& model);
+std::vector<std::array<Id, 2>> findSheetCuts(const FeModel& model);
 
 /// Splits the shells of one part into sheets and finds their curves (see the definitions at the
 /// top of the file).

@@ -246,9 +246,9 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
   // The part models hold only the shells around each part: its sheets are split at the folds
   // found on the whole deck.
   RemeshSettings settings = asked;
-  if (!settings.sheets.foldCuts)
-    settings.sheets.foldCuts =
-        std::make_shared<const std::vector<std::array<Id, 2>>>(findFoldCuts(deck));
+  if (!settings.sheets.sheetCuts)
+    settings.sheets.sheetCuts =
+        std::make_shared<const std::vector<std::array<Id, 2>>>(findSheetCuts(deck));
   RemeshReport report;
   const std::vector<PartPlan> plans = planRemesh(deck, settings);
   report.parts.resize(plans.size());

@@ -30,9 +30,8 @@ void checkSettings(const SheetSettings& settings) {
   checkAngle(settings.cornerAngleDeg, "cornerAngleDeg");
 }
 
-std::vector<Sheet> partSheets(const sheets::ModelContext& context, Index entry,
-                              const SheetSettings& settings, std::vector<Index>& localOf) {
-  const sheets::PartMesh part = sheets::makePartMesh(context, entry, localOf);
+std::vector<Sheet> partSheets(const sheets::ModelContext& context, const sheets::PartMesh& part,
+                              const SheetSettings& settings) {
   const sheets::Orientation orientation = sheets::orientComponents(context, part);
   std::vector<sheets::SheetDraft> drafts = sheets::splitSheets(context, part, orientation);
   // The curves of each sheet depend on that sheet only.
@@ -51,20 +50,20 @@ std::vector<Sheet> partSheets(const sheets::ModelContext& context, Index entry,
 
 std::vector<Sheet> buildSheets(const FeModel& model, Id part, const SheetSettings& settings) {
   checkSettings(settings);
-  const sheets::ModelContext context = sheets::makeModelContext(model, settings);
+  sheets::ModelContext context = sheets::makeModelContext(model);
   for (Index entry = 0; entry < context.partIds.size(); ++entry)
     if (context.partIds[entry] == part) {
+      sheets::setSheetCuts(context, settings);
       std::vector<Index> localOf(model.nodes.size(), kNoIndex);
-      return partSheets(context, entry, settings, localOf);
+      return partSheets(context, sheets::makePartMesh(context, entry, localOf), settings);
     }
   return {};
 }
 
-std::vector<std::array<Id, 2>> findFoldCuts(const FeModel& model) {
-  const sheets::ModelContext context = sheets::makeModelContext(model, SheetSettings{});
+std::vector<std::array<Id, 2>> findSheetCuts(const FeModel& model) {
+  const sheets::ModelContext context = sheets::makeModelContext(model);
   std::vector<std::array<Id, 2>> cuts;
-  cuts.reserve(context.foldCuts.size());
-  for (const auto& [a, b] : context.foldCuts) {
+  for (const auto& [a, b] : sheets::findSheetCuts(context)) {
     const Id u = model.nodes[a].id, v = model.nodes[b].id;
     cuts.push_back({std::min(u, v), std::max(u, v)});
   }
@@ -74,17 +73,33 @@ std::vector<std::array<Id, 2>> findFoldCuts(const FeModel& model) {
 
 std::vector<Sheet> buildAllSheets(const FeModel& model, const SheetSettings& settings) {
   checkSettings(settings);
-  const sheets::ModelContext context = sheets::makeModelContext(model, settings);
+  sheets::ModelContext context = sheets::makeModelContext(model);
   const std::size_t parts = context.partIds.size();
-  std::vector<std::vector<Sheet>> perPart(parts);
-  std::vector<std::exception_ptr> errors(parts);
-  // makePartMesh leaves its scratch as it found it before the per-sheet parallel loop starts, so
-  // a part task that TBB runs on this thread inside that loop may use the same scratch.
+  // Each part's faces once: for its cuts (unless given), then for its sheets.
+  std::vector<sheets::PartMesh> meshes(parts);
   tbb::enumerable_thread_specific<std::vector<Index>> scratch(
       [&] { return std::vector<Index>(model.nodes.size(), kNoIndex); });
   tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t entry) {
+    meshes[entry] = sheets::makePartMesh(context, Index(entry), scratch.local());
+  });
+  if (settings.sheetCuts) {
+    sheets::setSheetCuts(context, settings);
+  } else {
+    std::vector<std::vector<std::array<Index, 2>>> cuts(parts);
+    tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t entry) {
+      cuts[entry] = sheets::partCuts(context, meshes[entry]);
+    });
+    for (const auto& list : cuts)
+      context.sheetCuts.insert(context.sheetCuts.end(), list.begin(), list.end());
+    std::sort(context.sheetCuts.begin(), context.sheetCuts.end());
+    context.sheetCuts.erase(std::unique(context.sheetCuts.begin(), context.sheetCuts.end()),
+                            context.sheetCuts.end());
+  }
+  std::vector<std::vector<Sheet>> perPart(parts);
+  std::vector<std::exception_ptr> errors(parts);
+  tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t entry) {
     try {
-      perPart[entry] = partSheets(context, Index(entry), settings, scratch.local());
+      perPart[entry] = partSheets(context, meshes[entry], settings);
     } catch (...) {
       errors[entry] = std::current_exception();
     }

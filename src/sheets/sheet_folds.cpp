@@ -1,5 +1,6 @@
-// Where a part's faces are split at acute folds (see "Folds" in sheets.h): the fold edges, the
-// side of each fold its faces lie on, and the faces coloured by the nearer side.
+// Where a part's faces are split at folds (see "Folds" in sheets.h): the fold edges, the side of
+// each fold its faces lie on, and the faces coloured by the nearer side; and the cuts of every
+// part of a model (folds and seams inside a sheet).
 #include <algorithm>
 #include <cmath>
 #include <queue>
@@ -148,9 +149,35 @@ std::vector<std::uint8_t> colourBySide(const PartMesh& part, const Orientation& 
   return colour;
 }
 
-/// The fold cuts of one part: its inner edges between faces of different colours, as model node
-/// index pairs (lower first).
+/// True when some edge with two faces is a fold, the faces' normals taken as they run along the
+/// edge (one flipped where both run the same way): a quick test before orienting the part.
+bool anyFold(const ModelContext& context, const PartMesh& part) {
+  std::vector<Vec3> normal(part.corners.size());
+  for (std::size_t f = 0; f < part.corners.size(); ++f) {
+    const ShellCorners& c = part.corners[f];
+    std::array<Vec3, 4> p{};
+    for (unsigned k = 0; k < c.count; ++k) p[k] = context.model.nodes[part.nodes[c.node[k]]].xyz;
+    normal[f] = faceNormal(p, c.count);
+  }
+  for (Index e = 0; e < part.edges.edgeCount(); ++e) {
+    if (!twoFaces(part.edges, e)) continue;
+    const ShellEdges::IncidenceRange on = part.edges.incidences(e);
+    const Vec3& a = normal[on[0].shell];
+    const Vec3& b = normal[on[1].shell];
+    // Normals more than kFoldDihedralDeg apart (120: a cosine under -1/2), b flipped where both
+    // faces run the same way along the edge.
+    const double cosine =
+        (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) * (on[0].forward == on[1].forward ? -1.0 : 1.0);
+    const double lengths = std::hypot(a[0], a[1], a[2]) * std::hypot(b[0], b[1], b[2]);
+    if (cosine < std::cos(kFoldDihedralDeg * 3.14159265358979323846 / 180.0) * lengths) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 std::vector<std::array<Index, 2>> partFoldCuts(const ModelContext& context, const PartMesh& part) {
+  if (!anyFold(context, part)) return {};
   const Orientation orientation = orientComponents(context, part);
   const FaceGeometry g = faceGeometry(context, part, orientation);
   const std::vector<Index> folds = foldEdges(part, g);
@@ -164,23 +191,30 @@ std::vector<std::array<Index, 2>> partFoldCuts(const ModelContext& context, cons
     const Index a = part.nodes[part.edges.edge(e).a], b = part.nodes[part.edges.edge(e).b];
     cuts.push_back({std::min(a, b), std::max(a, b)});
   }
+  std::sort(cuts.begin(), cuts.end());
   return cuts;
 }
 
-}  // namespace
+std::vector<std::array<Index, 2>> partCuts(const ModelContext& context, const PartMesh& part) {
+  try {
+    std::vector<std::array<Index, 2>> cuts = partFoldCuts(context, part);
+    const std::vector<std::array<Index, 2>> seams = partInnerSeamCuts(context, part, cuts);
+    cuts.insert(cuts.end(), seams.begin(), seams.end());
+    std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    return cuts;
+  } catch (const InputError&) {
+    return {};  // not orientable: that part's own buildSheets reports it
+  }
+}
 
-std::vector<std::array<Index, 2>> findFoldCuts(const ModelContext& context) {
+std::vector<std::array<Index, 2>> findSheetCuts(const ModelContext& context) {
   const std::size_t parts = context.partIds.size();
   std::vector<std::vector<std::array<Index, 2>>> perPart(parts);
   tbb::enumerable_thread_specific<std::vector<Index>> scratch(
       [&] { return std::vector<Index>(context.model.nodes.size(), kNoIndex); });
   tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t entry) {
-    const PartMesh part = makePartMesh(context, Index(entry), scratch.local());
-    try {
-      perPart[entry] = partFoldCuts(context, part);
-    } catch (const InputError&) {
-      // Not orientable: that part's own buildSheets reports it; it has no folds to cut.
-    }
+    perPart[entry] = partCuts(context, makePartMesh(context, Index(entry), scratch.local()));
   });
   std::vector<std::array<Index, 2>> cuts;
   for (const auto& list : perPart) cuts.insert(cuts.end(), list.begin(), list.end());

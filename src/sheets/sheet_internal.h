@@ -1,7 +1,8 @@
 // Internal steps of buildSheets (include/voxremesh/sheets.h), one file each:
 //   sheet_model.cpp        what is computed once per model (corners, parts, nodes shared by parts)
 //   sheet_orientation.cpp  components across manifold edges and their consistent orientation
-//   sheet_folds.cpp        the edges where sheets are split at acute folds
+//   sheet_folds.cpp        the edges where sheets are split at folds; all cuts of a model
+//   sheet_extensions.cpp   cuts along seams inside a sheet, extended from their ends
 //   sheet_splitting.cpp    the sheets' faces and points (joining or cutting at non-manifold edges)
 //   sheet_boundary.cpp     boundary loops
 //   sheet_features.cpp     feature lines and feature points
@@ -67,10 +68,10 @@ struct ModelContext {
   std::vector<Index> shellsAt;
   /// Inner edges where a part's faces are split at an acute fold (see "Folds" in sheets.h): model
   /// node index pairs, lower first, ascending.
-  std::vector<std::array<Index, 2>> foldCuts;
+  std::vector<std::array<Index, 2>> sheetCuts;
 
   /// The edge between nodes u and v (model node indices) is a fold cut.
-  bool foldCut(Index u, Index v) const;
+  bool isCut(Index u, Index v) const;
 
   /// Nodes u and v (model node indices) are both used by shells of one part entry other than
   /// `part`.
@@ -84,15 +85,17 @@ struct ModelContext {
   bool seamStop(Index v) const;
 };
 
-/// Builds the context of `model`: its fold cuts are settings.foldCuts (those whose nodes the model
-/// has) when given, else found on the model itself (findFoldCuts). Throws std::invalid_argument as
+/// Builds the context of `model`, without cuts. Throws std::invalid_argument as
 /// model::shellCorners does.
-ModelContext makeModelContext(const FeModel& model, const SheetSettings& settings);
+ModelContext makeModelContext(const FeModel& model);
 
-/// The fold cuts of every part of the context's model (see "Folds" in sheets.h), found with the
-/// context's own fold cuts ignored: model node index pairs, lower first, ascending. A part that
-/// cannot be oriented has none.
-std::vector<std::array<Index, 2>> findFoldCuts(const ModelContext& context);
+/// Sets the context's cuts: settings.sheetCuts (those whose nodes the model has) when given, else
+/// those found on the model itself (findSheetCuts).
+void setSheetCuts(ModelContext& context, const SheetSettings& settings);
+
+/// The cuts of every part of the context's model (see "Cuts" in sheets.h), found with the
+/// context's own cuts ignored: model node index pairs, lower first, ascending.
+std::vector<std::array<Index, 2>> findSheetCuts(const ModelContext& context);
 
 /// The faces of one part: the shells with a surface, with part-local node numbers and adjacency.
 struct PartMesh {
@@ -116,6 +119,24 @@ struct Orientation {
   std::vector<std::uint8_t> flipped;  ///< per position: 1 where the face's corners are reversed
   Index componentCount = 0;
 };
+
+/// The cuts of one part (partFoldCuts and partInnerSeamCuts, see "Cuts" in sheets.h), found with
+/// the context's own cuts ignored; none for a part that cannot be oriented (its buildSheets
+/// reports that). Model node index pairs, lower first, ascending.
+std::vector<std::array<Index, 2>> partCuts(const ModelContext& context, const PartMesh& part);
+
+/// The fold cuts of one part (see "Folds" in sheets.h): model node index pairs, lower first,
+/// ascending. Throws InputError as orientComponents does.
+std::vector<std::array<Index, 2>> partFoldCuts(const ModelContext& context, const PartMesh& part);
+
+/// The cuts along the seams inside the part (see "Seams inside a sheet" in sheets.h): its manifold
+/// edges whose nodes another part shares, and from each end of such a seam inside the part the
+/// edges turning less than 45 degrees from the seam's last edge to the first node on the
+/// boundary, another curve or one of `cuts` (sorted model node index pairs; an end that reaches
+/// none is not extended). Model node index pairs, lower first, ascending.
+std::vector<std::array<Index, 2>> partInnerSeamCuts(const ModelContext& context,
+                                                    const PartMesh& part,
+                                                    const std::vector<std::array<Index, 2>>& cuts);
 
 /// Splits the faces into components across manifold edges that are not fold cuts of the context
 /// and orients each consistently, keeping the majority orientation. Throws InputError naming the

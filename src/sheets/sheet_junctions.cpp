@@ -15,7 +15,7 @@ void findJunctions(SheetDraft& draft, const ModelContext& context, const PartMes
     const ShellEdges::Edge& nodes = part.edges.edge(partEdge);
     const Index a = part.nodes[nodes.a], b = part.nodes[nodes.b];
     if (!part.edges.isNonManifold(partEdge) && !context.sharedWithOtherPart(a, b, part.partEntry) &&
-        !context.foldCut(a, b))
+        !context.isCut(a, b))
       continue;
     chosen.push_back(e);
     // The sheet edge's points in the order of the part edge's nodes (matched by node ID).

@@ -28,9 +28,9 @@ bool ModelContext::sharedWithOtherPart(Index u, Index v, Index part) const {
   return false;
 }
 
-bool ModelContext::foldCut(Index u, Index v) const {
+bool ModelContext::isCut(Index u, Index v) const {
   const std::array<Index, 2> key{std::min(u, v), std::max(u, v)};
-  return std::binary_search(foldCuts.begin(), foldCuts.end(), key);
+  return std::binary_search(sheetCuts.begin(), sheetCuts.end(), key);
 }
 
 bool ModelContext::seamStop(Index v) const {
@@ -59,17 +59,14 @@ bool ModelContext::seamStop(Index v) const {
   }
   std::vector<const EdgeAtNode*> seams;
   for (EdgeAtNode& e : edges) {
-    if (e.shells < 3 && e.entries.size() < 2 && !foldCut(v, e.other)) continue;
+    if (e.shells < 3 && e.entries.size() < 2 && !isCut(v, e.other)) continue;
     std::sort(e.entries.begin(), e.entries.end());
     seams.push_back(&e);
   }
   return seams.size() != 2 || seams[0]->entries != seams[1]->entries;
 }
 
-namespace {
-
-/// The context without fold cuts.
-ModelContext baseContext(const FeModel& model) {
+ModelContext makeModelContext(const FeModel& model) {
   ModelContext context{model, model::shellCorners(model), {}, {}, {}, {}, {}, {}, {}, {}, {}};
 
   // Entries: the model's parts in order, then undefined parts named by shells, ascending; parts
@@ -166,23 +163,20 @@ ModelContext baseContext(const FeModel& model) {
   return context;
 }
 
-}  // namespace
-
-ModelContext makeModelContext(const FeModel& model, const SheetSettings& settings) {
-  ModelContext context = baseContext(model);
-  if (!settings.foldCuts) {
-    context.foldCuts = findFoldCuts(context);
-    return context;
+void setSheetCuts(ModelContext& context, const SheetSettings& settings) {
+  context.sheetCuts.clear();
+  if (!settings.sheetCuts) {
+    context.sheetCuts = findSheetCuts(context);
+    return;
   }
-  const std::unordered_map<Id, std::size_t> indexOf = model.nodeIndex();
-  for (const std::array<Id, 2>& cut : *settings.foldCuts) {
+  const std::unordered_map<Id, std::size_t> indexOf = context.model.nodeIndex();
+  for (const std::array<Id, 2>& cut : *settings.sheetCuts) {
     const auto a = indexOf.find(cut[0]), b = indexOf.find(cut[1]);
     if (a == indexOf.end() || b == indexOf.end()) continue;
-    context.foldCuts.push_back(
+    context.sheetCuts.push_back(
         {Index(std::min(a->second, b->second)), Index(std::max(a->second, b->second))});
   }
-  std::sort(context.foldCuts.begin(), context.foldCuts.end());
-  return context;
+  std::sort(context.sheetCuts.begin(), context.sheetCuts.end());
 }
 
 PartMesh makePartMesh(const ModelContext& context, Index partEntry, std::vector<Index>& localOf) {

@@ -46,7 +46,7 @@ Orientation orientComponents(const ModelContext& context, const PartMesh& part) 
         const Index e = edges.shellEdge(f, side);
         if (!edges.isManifold(e)) continue;
         const ShellEdges::Edge& ends = edges.edge(e);
-        if (context.foldCut(part.nodes[ends.a], part.nodes[ends.b])) continue;
+        if (context.isCut(part.nodes[ends.a], part.nodes[ends.b])) continue;
         const ShellEdges::IncidenceRange on = edges.incidences(e);
         const bool firstIsMine = on[0].shell == f && on[0].side == side;
         const ShellEdges::Incidence& mine = firstIsMine ? on[0] : on[1];
