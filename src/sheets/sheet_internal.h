@@ -70,7 +70,7 @@ struct ModelContext {
   /// node index pairs, lower first, ascending.
   std::vector<std::array<Index, 2>> sheetCuts;
 
-  /// The edge between nodes u and v (model node indices) is a fold cut.
+  /// The edge between nodes u and v (model node indices) is a cut (a fold's or a seam's).
   bool isCut(Index u, Index v) const;
 
   /// Nodes u and v (model node indices) are both used by shells of one part entry other than
@@ -79,7 +79,7 @@ struct ModelContext {
 
   /// True when junction curves must end at node v (model node index), whichever part or sheet
   /// they are found from: the model's seam edges at v (edges of three or more shells, of shells
-  /// of two or more parts, or fold cuts) are not exactly two, or the two are edges of different
+  /// of two or more parts, or cuts) are not exactly two, or the two are edges of different
   /// sets of parts. Every part meeting at v then cuts its curves there, so that both sides of a
   /// seam sample the same pieces between the same ends.
   bool seamStop(Index v) const;
@@ -138,7 +138,7 @@ std::vector<std::array<Index, 2>> partInnerSeamCuts(const ModelContext& context,
                                                     const PartMesh& part,
                                                     const std::vector<std::array<Index, 2>>& cuts);
 
-/// Splits the faces into components across manifold edges that are not fold cuts of the context
+/// Splits the faces into components across manifold edges that are not cuts of the context
 /// and orients each consistently, keeping the majority orientation. Throws InputError naming the
 /// part, a shell and an edge when a component is not orientable.
 Orientation orientComponents(const ModelContext& context, const PartMesh& part);

@@ -1,4 +1,4 @@
-// Junction curves: where a sheet met other sheets of its part (non-manifold edges, fold cuts) or
+// Junction curves: where a sheet met other sheets of its part (non-manifold edges, cuts) or
 // shared nodes with another part; cut where the model's seams end or change partners
 // (ModelContext::seamStop).
 #include "sheets/sheet_internal.h"

@@ -89,7 +89,7 @@ void joinOrCut(PartSplit& split) {
   }
 }
 
-// The face joined to `position` across part edge `e`, or kNoIndex (also across a fold cut,
+// The face joined to `position` across part edge `e`, or kNoIndex (also across a cut,
 // whose faces lie in different components).
 Index partnerAcross(const PartSplit& split, Index position, Index e) {
   const ShellEdges& edges = split.part.edges;
