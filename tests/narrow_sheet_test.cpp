@@ -270,7 +270,7 @@ TEST(PolygonQuads, AnLShapedPolygonIsCoveredByQuads) {
                                                    {1, 3, 0}, {0, 3, 0}, {0, 2, 0}, {0, 1, 0}};
   const std::vector<std::array<double, 3>> up(corners.size(), {0.0, 0.0, 1.0});
   const auto faces =
-      extract::polygonQuads(corners, up, 3.0, [](std::size_t, std::size_t) { return true; });
+      extract::polygonQuads(corners, up, 3.0, [](std::size_t, std::size_t) { return true; }, {});
   ASSERT_EQ(faces.size(), 5u);
   QuadMesh mesh;
   mesh.points = corners;
@@ -281,9 +281,47 @@ TEST(PolygonQuads, AnLShapedPolygonIsCoveredByQuads) {
   EXPECT_NEAR(area(mesh), 5.0, 1e-12);
   // Facing down, no triangle agrees with the normals: no mesh.
   const std::vector<std::array<double, 3>> down(corners.size(), {0.0, 0.0, -1.0});
-  EXPECT_TRUE(extract::polygonQuads(corners, down, 3.0, [](std::size_t, std::size_t) {
-                return true;
-              }).empty());
+  EXPECT_TRUE(
+      extract::polygonQuads(corners, down, 3.0, [](std::size_t, std::size_t) { return true; }, {})
+          .empty());
+}
+
+/// Of the faces of polygonQuads over `corners` (all chords allowed, normals +z): those failing
+/// one of the default element criteria other than the minimum length, triangles and quads.
+std::array<std::size_t, 3> polygonFaceCounts(const std::vector<std::array<double, 3>>& corners) {
+  const std::vector<std::array<double, 3>> up(corners.size(), {0.0, 0.0, 1.0});
+  const auto faces = extract::polygonQuads(
+      corners, up, 10.0, [](std::size_t, std::size_t) { return true; }, QualitySettings{});
+  EXPECT_FALSE(faces.empty());
+  QualitySettings settings;
+  settings.targetSize = 1.0;
+  const std::uint32_t lengthBit = 1u << static_cast<int>(Criterion::MinLength);
+  std::size_t failing = 0, triangles = 0, quads = 0;
+  for (const auto& face : faces) {
+    const int count = face[3] == UINT32_MAX ? 3 : 4;
+    std::array<std::array<double, 3>, 4> p{corners[face[0]], corners[face[1]], corners[face[2]],
+                                           corners[face[count == 3 ? 2 : 3]]};
+    const std::uint32_t fails = elementFailures(elementQuality(p, count), count, settings);
+    failing += (fails & ~lengthBit) != 0;
+    triangles += count == 3;
+    quads += count == 4;
+  }
+  return {failing, triangles, quads};
+}
+
+TEST(PolygonQuads, ARowAcrossAStripThatTurnsTwoToOneHasNoFailingFace) {
+  // A strip 1.5 wide: its lower side has nodes 2 apart; its upper side 1 apart over the left half
+  // (a seam with a finer neighbour there), 2 apart over the right half. A quad over one lower and
+  // one upper piece of the left half is a 2:1 trapezoid (Jacobian ratio 0.5 at the corners, under
+  // 0.6): the left half takes triangles that pass, the right half rectangles.
+  std::vector<std::array<double, 3>> corners;
+  for (int i = 0; i <= 8; i += 2) corners.push_back({double(i), 0.0, 0.0});
+  for (int i = 8; i >= 4; i -= 2) corners.push_back({double(i), 1.5, 0.0});
+  for (int i = 3; i >= 0; --i) corners.push_back({double(i), 1.5, 0.0});
+  const auto [failing, triangles, quads] = polygonFaceCounts(corners);
+  EXPECT_EQ(failing, 0u);
+  EXPECT_EQ(quads, 2u);
+  EXPECT_EQ(triangles, 6u);
 }
 
 TEST(NarrowSheet, AFourSidedPatchTwoElementsWideGetsAGridWithNodesInside) {

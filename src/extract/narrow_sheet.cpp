@@ -245,11 +245,13 @@ void addRowFaces(QuadMesh& mesh, const std::vector<Vec3>& polygon,
                              std::to_string(kMostRowNodes) + ")");
   std::vector<Vec3> normals;
   for (const Vec3& p : polygon) normals.push_back(normalAt(surface, reference, p));
-  const std::vector<PolygonFace> faces =
-      polygonQuads(polygon, normals, settings.maxChord, [&](std::size_t i, std::size_t j) {
+  const std::vector<PolygonFace> faces = polygonQuads(
+      polygon, normals, settings.maxChord,
+      [&](std::size_t i, std::size_t j) {
         return pointOf[i] != pointOf[j] && chordOnSurface(polygon[i], polygon[j], reference,
                                                           settings.spacing, settings.tolerance);
-      });
+      },
+      settings.criteria);
   if (faces.empty())
     throw NarrowSheetRefusal("no row of faces across it between its " +
                              std::to_string(mesh.points.size()) + " boundary nodes stays on it");

@@ -16,15 +16,16 @@
 // nodes inside where it is more than one element wide); any other disk, and a ring joined into
 // one polygon by a bridge between its loops, gets one row of quads across (polygon_quads.h),
 // chords allowed where points sampled along them lie within `tolerance` of the sheet, faces
-// agreeing with the sheet's normals. The patches are joined at their shared junction nodes. The
-// mesh is of the same kind as an extracted one: nodes with role Corner, Junction or Boundary on
-// their loop's curve, grid nodes inside Free.
+// agreeing with the sheet's normals and chosen by the quality criteria. The patches are joined at
+// their shared junction nodes. The mesh is of the same kind as an extracted one: nodes with role
+// Corner, Junction or Boundary on their loop's curve, grid nodes inside Free.
 #pragma once
 
 #include <stdexcept>
 
 #include "extract/junction_nodes.h"
 #include "voxremesh/quad_mesh.h"
+#include "voxremesh/quality.h"
 #include "voxremesh/reference_surface.h"
 #include "voxremesh/sheets.h"
 
@@ -42,6 +43,8 @@ struct NarrowSheetSettings {
   double spacing = 0.0;    ///< distance of the nodes along free stretches of the loop, > 0
   double tolerance = 0.0;  ///< largest distance of a face's chords from the sheet, > 0
   double maxChord = 0.0;   ///< the longest edge across the sheet, > 0
+  /// The quality limits the faces of a row are chosen by (polygon_quads.h); targetSize unused.
+  QualitySettings criteria;
 };
 
 /// Meshes a narrow sheet from its boundary nodes (see the top of the file).

@@ -2,7 +2,6 @@
 #include "extract/polygon_quads.h"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 
 #include "geometry/vec3.h"
@@ -17,9 +16,17 @@ constexpr double kInfinite = std::numeric_limits<double>::infinity();
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 /// A quad corner may not be flatter than this (degrees): the quad must stay clearly convex.
 constexpr double kFlattestQuadCornerDeg = 170.0;
+/// The cost of a face failing a criterion: more than any shape and triangle costs of the faces
+/// that could replace it, so that the mesh first has as few failing faces as it can.
+constexpr double kFailingFaceCost = 100.0;
+/// The extra cost of a triangle: two triangles cost more than one quad of the same shape.
+constexpr double kTriangleCost = 0.5;
+/// Quads are searched only while (sum over corners of their chords squared) x (most chords at a
+/// corner) stays below this: the quad search's work.
+constexpr double kQuadSearchBudget = 2.0e7;
 
-/// The edges the triangulation may use from each corner to a later one: polygon edges and
-/// allowed chords, ascending.
+/// The edges the mesh may use from each corner to a later one: polygon edges and allowed chords,
+/// ascending.
 std::vector<std::vector<std::uint32_t>> candidateEdges(const std::vector<Vec3>& corners,
                                                        double maxChord, const ChordTest& chordOk) {
   const std::size_t n = corners.size();
@@ -34,21 +41,41 @@ std::vector<std::vector<std::uint32_t>> candidateEdges(const std::vector<Vec3>& 
   return edges;
 }
 
-/// The shape cost of triangle a-b-c against the surface normal `up`: the inverse of its shape
-/// quality, infinite when it has no area or faces against `up`.
-double triangleCost(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& up) {
-  const Vec3 normal = cross(b - a, c - a);
-  if (!(dot(normal, up) > 0.0)) return kInfinite;
-  const double squares = dot(b - a, b - a) + dot(c - b, c - b) + dot(a - c, a - c);
-  const double quality = 2.0 * std::sqrt(3.0) * norm(normal) / squares;
-  return quality > 1e-9 ? 1.0 / quality : kInfinite;
+/// True when the quad search fits kQuadSearchBudget.
+bool quadsAffordable(const std::vector<std::vector<std::uint32_t>>& edges) {
+  double squares = 0.0, most = 0.0;
+  for (const auto& from : edges) {
+    squares += double(from.size()) * double(from.size());
+    most = std::max(most, double(from.size()));
+  }
+  return squares * most <= kQuadSearchBudget;
 }
 
-/// One triangle of the triangulation: corners i < k < j (oriented i, k, j), and the triangles on
-/// its chords i-k and k-j (kNone on a polygon edge).
-struct Triangle {
-  std::uint32_t i, k, j;
-  std::uint32_t left = kNone, right = kNone;
+/// The cost of a face with the given corners (3 or 4) against the surface normal `up`: infinite
+/// when it faces against `up` (a quad also when it is not convex) or has no shape (a scaled
+/// Jacobian of 1e-9 or less), else kFailingFaceCost when it fails an element criterion other than
+/// the minimum length, plus 1 / its scaled Jacobian - 1 (0 for a square or an equilateral
+/// triangle, growing without bound towards a sliver), plus kTriangleCost for a triangle.
+double faceCost(const std::array<Vec3, 4>& p, int count, const Vec3& up,
+                const QualitySettings& criteria) {
+  if (count == 3) {
+    if (!(dot(cross(p[1] - p[0], p[2] - p[0]), up) > 0.0)) return kInfinite;
+  } else if (!convexQuad(p, up)) {
+    return kInfinite;
+  }
+  const ElementQuality quality = elementQuality(p, count);
+  if (!(quality.scaledJacobian > 1e-9)) return kInfinite;
+  const std::uint32_t lengthBit = 1u << static_cast<int>(Criterion::MinLength);
+  const bool fails = (elementFailures(quality, count, criteria) & ~lengthBit) != 0;
+  const double shape = 1.0 / std::min(quality.scaledJacobian, 1.0) - 1.0;
+  return (fails ? kFailingFaceCost : 0.0) + shape + (count == 3 ? kTriangleCost : 0.0);
+}
+
+/// The face closing the sub-polygon below a chord i-j: corners i, k, j (a triangle, l == kNone)
+/// or i, k, l, j (a quad).
+struct Closing {
+  double cost = kInfinite;  ///< of the whole sub-polygon
+  std::uint32_t k = kNone, l = kNone;
 };
 
 }  // namespace
@@ -67,20 +94,21 @@ bool convexQuad(const std::array<Vec3, 4>& q, const Vec3& up) {
 
 std::vector<PolygonFace> polygonQuads(const std::vector<Vec3>& corners,
                                       const std::vector<Vec3>& normals, double maxChord,
-                                      const ChordTest& chordOk) {
+                                      const ChordTest& chordOk, const QualitySettings& criteria) {
   const std::size_t n = corners.size();
   if (n < 3 || normals.size() != n) return {};
   const auto edges = candidateEdges(corners, maxChord, chordOk);
-  // Best cost and split corner of the sub-polygon i..j below each edge i-j, smallest spans first.
-  std::vector<std::vector<double>> cost(n);
-  std::vector<std::vector<std::uint32_t>> split(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    cost[i].assign(edges[i].size(), kInfinite);
-    split[i].assign(edges[i].size(), kNone);
-  }
-  auto slot = [&](std::size_t i, std::size_t j) -> std::ptrdiff_t {
+  const bool searchQuads = quadsAffordable(edges);
+  // The best closing of the sub-polygon i..j below each edge i-j, smallest spans first.
+  std::vector<std::vector<Closing>> best(n);
+  for (std::size_t i = 0; i < n; ++i) best[i].assign(edges[i].size(), Closing{});
+  const auto slot = [&](std::size_t i, std::size_t j) -> std::ptrdiff_t {
     const auto it = std::lower_bound(edges[i].begin(), edges[i].end(), std::uint32_t(j));
     return it != edges[i].end() && *it == j ? it - edges[i].begin() : -1;
+  };
+  const auto costBelow = [&](std::size_t i, std::size_t j) {
+    const std::ptrdiff_t s = slot(i, j);
+    return s < 0 ? kInfinite : best[i][std::size_t(s)].cost;
   };
   std::vector<std::pair<std::uint32_t, std::uint32_t>> spans;
   for (std::size_t i = 0; i < n; ++i)
@@ -89,70 +117,53 @@ std::vector<PolygonFace> polygonQuads(const std::vector<Vec3>& corners,
     return a.second - a.first < b.second - b.first;
   });
   for (const auto& [i, j] : spans) {
-    const std::ptrdiff_t ij = slot(i, j);
+    Closing& closing = best[i][std::size_t(slot(i, j))];
     if (j == i + 1) {
-      cost[i][std::size_t(ij)] = 0.0;
+      closing.cost = 0.0;
       continue;
     }
     for (std::size_t a = 0; a < edges[i].size() && edges[i][a] < j; ++a) {
       const std::uint32_t k = edges[i][a];
-      const std::ptrdiff_t kj = slot(k, j);
-      if (kj < 0 || cost[i][a] == kInfinite || cost[k][std::size_t(kj)] == kInfinite) continue;
-      const double total =
-          cost[i][a] + cost[k][std::size_t(kj)] +
-          triangleCost(corners[i], corners[k], corners[j], normals[i] + normals[k] + normals[j]);
-      if (total < cost[i][std::size_t(ij)]) {
-        cost[i][std::size_t(ij)] = total;
-        split[i][std::size_t(ij)] = k;
+      const double left = best[i][a].cost;
+      if (left == kInfinite) continue;
+      const double right = costBelow(k, j);
+      if (left + right < closing.cost) {  // a face costs 0 or more
+        const double total = left + right +
+                             faceCost({corners[i], corners[k], corners[j], corners[j]}, 3,
+                                      normals[i] + normals[k] + normals[j], criteria);
+        if (total < closing.cost) closing = {total, k, kNone};
+      }
+      if (!searchQuads) continue;
+      for (std::size_t b = 0; b < edges[k].size() && edges[k][b] < j; ++b) {
+        const std::uint32_t l = edges[k][b];
+        const double middle = best[k][b].cost, last = costBelow(l, j);
+        // A quad is two triangles on an allowed diagonal: its middle stays on the surface.
+        if (!(left + middle + last < closing.cost) || (slot(i, l) < 0 && slot(k, j) < 0)) continue;
+        const double total = left + middle + last +
+                             faceCost({corners[i], corners[k], corners[l], corners[j]}, 4,
+                                      normals[i] + normals[k] + normals[l] + normals[j], criteria);
+        if (total < closing.cost) closing = {total, k, l};
       }
     }
   }
-  const std::ptrdiff_t root = slot(0, n - 1);
-  if (root < 0 || cost[0][std::size_t(root)] == kInfinite) return {};
+  if (costBelow(0, n - 1) == kInfinite) return {};
 
-  // The triangles, each after the one on its outer chord (the root on edge 0 - (n-1)).
-  std::vector<Triangle> triangles;
-  std::vector<std::uint32_t> parent;
-  std::vector<std::array<std::uint32_t, 3>> pending{{0, std::uint32_t(n - 1), kNone}};
-  while (!pending.empty()) {
-    const auto [i, j, from] = pending.back();
-    pending.pop_back();
-    const std::uint32_t k = split[i][std::size_t(slot(i, j))];
-    const std::uint32_t t = std::uint32_t(triangles.size());
-    triangles.push_back({i, k, j});
-    parent.push_back(from);
-    if (from != kNone) (triangles[from].i == i ? triangles[from].left : triangles[from].right) = t;
-    if (k > i + 1) pending.push_back({i, k, t});
-    if (j > k + 1) pending.push_back({k, j, t});
-  }
-
-  // Leaves first (children come after their parent): each unmatched triangle takes its parent.
-  std::vector<std::uint32_t> partner(triangles.size(), kNone);
-  for (std::size_t t = triangles.size(); t-- > 1;) {
-    const std::uint32_t p = parent[t];
-    if (partner[t] != kNone || partner[p] != kNone) continue;
-    const Triangle& up = triangles[p];
-    const Triangle& child = triangles[t];
-    // The child lies on the parent's chord i-k (corners i, m, k) or k-j (corners k, m, j).
-    const std::array<std::uint32_t, 4> quad = up.left == t ? std::array{up.i, child.k, up.k, up.j}
-                                                           : std::array{up.i, up.k, child.k, up.j};
-    const std::array<Vec3, 4> q{corners[quad[0]], corners[quad[1]], corners[quad[2]],
-                                corners[quad[3]]};
-    if (!convexQuad(q, normals[quad[0]] + normals[quad[1]] + normals[quad[2]] + normals[quad[3]]))
-      continue;
-    partner[t] = p;
-    partner[p] = std::uint32_t(t);
-  }
-
+  // The faces, from the closing of the whole polygon (below its edge 0 - (n-1)) down.
   std::vector<PolygonFace> faces;
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    const Triangle& tri = triangles[t];
-    if (partner[t] == kNone) {
-      faces.push_back({tri.i, tri.k, tri.j, kNone});
-    } else if (partner[t] < t) {  // the child of a pair writes the quad
-      const Triangle& up = triangles[partner[t]];
-      faces.push_back(up.left == t ? PolygonFace{up.i, tri.k, up.k, up.j}
-                                   : PolygonFace{up.i, up.k, tri.k, up.j});
+  std::vector<std::array<std::uint32_t, 2>> pending{{0, std::uint32_t(n - 1)}};
+  while (!pending.empty()) {
+    const auto [i, j] = pending.back();
+    pending.pop_back();
+    if (j == i + 1) continue;
+    const Closing& closing = best[i][std::size_t(slot(i, j))];
+    const std::uint32_t k = closing.k, l = closing.l;
+    faces.push_back(l == kNone ? PolygonFace{i, k, j, kNone} : PolygonFace{i, k, l, j});
+    pending.push_back({i, k});
+    if (l == kNone) {
+      pending.push_back({k, j});
+    } else {
+      pending.push_back({k, l});
+      pending.push_back({l, j});
     }
   }
   return faces;

@@ -76,6 +76,7 @@ QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
   narrow.spacing = spacing;
   narrow.tolerance = kNarrowChordShare * targetSize;
   narrow.maxChord = kNarrowChordWidths * std::max(sheetWidth(sheet), spacing);
+  narrow.criteria = settings.optimizeSettings.quality;
   QuadMesh mesh = extract::meshNarrowSheet(
       sheet, surface, original,
       sheetJunctionNodes(sheet, extractJunctionSpacing(settings, junctionSpacing)), narrow);
