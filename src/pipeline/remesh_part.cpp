@@ -189,7 +189,7 @@ double boundaryMeshSize(const QuadMesh& mesh, double spacing) {
 
 /// One sheet's mesh through a volume of voxel `voxel`; where the extraction fails (the sheet too
 /// narrow somewhere for the voxel), from its boundary instead when it can be (narrow_sheet.h,
-/// nodes `voxel` apart or twice the sheet's width where that is less). `size` is lowered to the
+/// nodes `voxel` apart or its rowLength where that is less). `size` is lowered to the
 /// size the mesh is judged at. Throws the extraction's error (with the refusal) when neither works.
 QuadMesh meshThroughVolumeOrBoundary(const Sheet& sheet, const QuadMesh& surface,
                                      const ReferenceSurface& original, double voxel,
@@ -204,7 +204,7 @@ QuadMesh meshThroughVolumeOrBoundary(const Sheet& sheet, const QuadMesh& surface
   } catch (const SettingError&) {
     throw;
   } catch (const std::runtime_error& error) {
-    const double spacing = std::min(voxel, 2.0 * sheetWidth(sheet));
+    const double spacing = std::min(voxel, rowLength(sheet, settings));
     try {
       QuadMesh mesh = meshFromBoundary(sheet, surface, original, spacing, plan.targetSize,
                                        junctionSpacing, hardPoints, settings);
@@ -291,7 +291,7 @@ std::vector<Point3> junctionNodePositions(const std::vector<Sheet>& sheets, doub
 struct StopAttempts {};
 
 /// The plans of an attempt from the sheets' boundaries: each sheet `plans` meshes through a volume
-/// is meshed from its boundary where it can be (nodes one target size apart, or twice its width
+/// is meshed from its boundary where it can be (nodes one target size apart, or its rowLength
 /// where that is less), and not optimised (on a wide sheet, such as a wing's skin, the edits
 /// move its area and the loads on it more than the rows as made); empty when no sheet can be.
 std::vector<SheetPlan> boundaryPlans(const std::vector<Sheet>& sheets,
@@ -302,7 +302,7 @@ std::vector<SheetPlan> boundaryPlans(const std::vector<Sheet>& sheets,
   bool any = false;
   for (std::size_t k = 0; k < sheets.size(); ++k) {
     if (plans[k].fromBoundary) continue;
-    const double spacing = std::min(plan.targetSize, 2.0 * sheetWidth(sheets[k]));
+    const double spacing = std::min(plan.targetSize, rowLength(sheets[k], settings));
     try {
       const QuadMesh surface = sheetSurface(sheets[k]);
       const ReferenceSurface original(surface);
@@ -318,8 +318,8 @@ std::vector<SheetPlan> boundaryPlans(const std::vector<Sheet>& sheets,
 }
 
 /// The first attempt's plan per sheet: a sheet narrower than settings.narrowFeatureVoxels target
-/// sizes is meshed from its boundary when it can be (nodes one target size apart along it, or
-/// twice its width where that is less, so that its elements stay as long as they are wide), else
+/// sizes is meshed from its boundary when it can be (nodes one target size apart along it, or its
+/// rowLength where that is less, so that its elements pass the aspect criterion), else
 /// through a volume with a voxel narrowFeatureVoxels times finer than its width (never below the
 /// finest voxel); other sheets through a volume at the target size. `note` receives the
 /// reductions in words.

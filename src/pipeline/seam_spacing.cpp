@@ -11,11 +11,23 @@
 
 namespace voxremesh::pipeline {
 
+namespace {
+
+/// The longest piece of a boundary cut into pieces about one spacing long, in spacings: a length
+/// just under 1.5 spacings stays one piece.
+constexpr double kLongestPiece = 1.5;
+
+}  // namespace
+
+double rowLength(const Sheet& sheet, const RemeshSettings& settings) {
+  return settings.optimizeSettings.quality.maxAspectRatio * sheetWidth(sheet) / kLongestPiece;
+}
+
 double sheetNodeSpacing(const Sheet& sheet, double targetSize, const RemeshSettings& settings) {
   const double width = sheetWidth(sheet);
   const bool narrow =
       settings.narrowFeatureVoxels > 0 && width < settings.narrowFeatureVoxels * targetSize;
-  return narrow ? std::min(targetSize, 2.0 * width) : targetSize;
+  return narrow ? std::min(targetSize, rowLength(sheet, settings)) : targetSize;
 }
 
 namespace {

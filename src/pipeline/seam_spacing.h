@@ -12,9 +12,16 @@
 
 namespace voxremesh::pipeline {
 
+/// The longest row length along a narrow sheet whose elements still pass the aspect criterion:
+/// an element of a row is the sheet's width (sheetWidth) across and one piece of its boundary
+/// along, and a boundary cut into even pieces about a spacing long (rounded to whole pieces) has
+/// pieces up to 1.5 spacings long; so the aspect limit (settings.optimizeSettings.quality) x the
+/// width / 1.5.
+double rowLength(const Sheet& sheet, const RemeshSettings& settings);
+
 /// The node spacing a sheet asks of the junction curves along it: `targetSize`, or for a sheet
-/// narrower than settings.narrowFeatureVoxels target sizes, twice its width (sheetWidth) where
-/// that is less: the length of the rows its boundary mesh gets.
+/// narrower than settings.narrowFeatureVoxels target sizes, its rowLength where that is less: the
+/// length of the rows its boundary mesh gets.
 double sheetNodeSpacing(const Sheet& sheet, double targetSize, const RemeshSettings& settings);
 
 /// Per node on a junction curve of the planned parts' sheets, the smallest sheetNodeSpacing among
