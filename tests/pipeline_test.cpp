@@ -308,6 +308,24 @@ TEST(Pipeline, AWingSkinIsRemeshedSideBySideWithinItsDistanceAtItsTrailingEdge) 
   EXPECT_TRUE(found);
 }
 
+TEST(Pipeline, APointedConeKeepsItsTip) {
+  // A cone of half angle 20 degrees, 10 long, at size 1.5: a volume rounds its tip off by more
+  // than the distance limit (0.375). The tip is a feature point (sheets.h), so the mesh keeps a
+  // node there and stays within the limit.
+  FeModel model = test::coneModel(24, 8, 20.0);
+  RemeshSettings settings;
+  settings.targetSize = 1.5;
+  const RemeshReport report = remeshDeck(model, settings);
+  ASSERT_EQ(report.parts.size(), 1u);
+  const RemeshedPart& part = report.parts[0];
+  EXPECT_NE(part.status, PartStatus::Kept) << part.reason;
+  EXPECT_LE(part.acceptance.distance, part.acceptance.distanceLimit);
+  bool tip = false;
+  for (const Node& node : model.nodes)
+    tip = tip || std::hypot(node.xyz[0], node.xyz[1], node.xyz[2]) < 1e-9;
+  EXPECT_TRUE(tip);
+}
+
 /// A 60 x 60 plate of 3-unit quads in z = 0 (part 1) with a stiffener 9 tall of 3-unit quads
 /// (part `stiffenerPart`, 2 by default) standing on the line y = 30 from x = 3 x `from` to
 /// 3 x `to`: they share its nodes.

@@ -659,6 +659,23 @@ TEST(Sheets, GentleBendIsNoFeatureAtTheDefaultAngle) {
   EXPECT_EQ(featurePointIds(sheets[0]).size(), 6u);
 }
 
+TEST(Sheets, TheTipOfAConeIsAFeaturePointAndAFlatOrCylindricalPointIsNot) {
+  // A cone of half angle 30 degrees: its faces' corner angles at the tip add up to 180 degrees,
+  // far short of 360 (a cone whose normals turn by the feature angle, 45, across its tip falls
+  // 27.4 degrees short), so the tip is a corner the mesh must keep; a cone of 80 degrees (15.5
+  // short) and a disk (none) have no such point, nor the points of their rings.
+  const FeModel pointed = test::coneModel(12, 4, 30.0);
+  std::vector<Sheet> sheets = buildSheets(pointed, 1);
+  ASSERT_EQ(sheets.size(), 1u);
+  EXPECT_TRUE(sheets[0].featureLines.empty());
+  EXPECT_EQ(featurePointIds(sheets[0]).count(1), 1u);
+  for (const double blunt : {80.0, 90.0}) {
+    sheets = buildSheets(test::coneModel(12, 4, blunt), 1);
+    ASSERT_EQ(sheets.size(), 1u);
+    EXPECT_EQ(featurePointIds(sheets[0]).count(1), 0u) << blunt;
+  }
+}
+
 TEST(Sheets, AFlangeFoldedBackIsTwoSheetsMeetingAtTheFold) {
   // Bent by 150 degrees the flange runs back over the plate, 30 degrees apart: a fold. Bent by
   // 110 degrees it is an ordinary sharp bend, held by one volume.

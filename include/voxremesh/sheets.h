@@ -70,7 +70,11 @@
 // - Feature points. Ascending, without repeats: the ends of open feature polylines (ends and
 //   branch points of feature lines, and where they meet the boundary), and the points where a
 //   boundary loop or a feature polyline turns by more than cornerAngleDeg (the angle between the
-//   incoming and the outgoing segment; a point next to a zero-length segment is no corner).
+//   incoming and the outgoing segment; a point next to a zero-length segment is no corner); and
+//   apexes: inner points off feature lines where the sheet comes to a point (a cone's tip, a
+//   nose), whose faces' corner angles add up to less than 360 degrees by more than those of a
+//   cone whose normals turn by featureAngleDeg across its tip, 360 x (1 - cos(featureAngleDeg /
+//   2)) (27.4 degrees at 45).
 // - Junction curves. Sheet edges whose part edge is non-manifold (where this sheet met other
 //   sheets of the part, or itself) or a cut, and sheet edges whose two nodes are both used by
 //   shells of one same other part (a seam where parts share nodes). Chained into polylines that

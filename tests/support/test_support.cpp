@@ -4,6 +4,7 @@
 
 #include <sys/wait.h>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -124,6 +125,27 @@ void addShell(FeModel& model, Id id, Id part, const std::vector<Id>& nodes) {
   shell.nodeCount = static_cast<std::uint8_t>(nodes.size());
   for (std::size_t k = 0; k < nodes.size() && k < 4; ++k) shell.nodes[k] = nodes[k];
   model.shells.push_back(shell);
+}
+
+FeModel coneModel(int around, int rings, double halfAngleDeg) {
+  constexpr double kPi = 3.14159265358979323846;
+  FeModel model;
+  model.partOrAdd(1, "cone");
+  const double a = halfAngleDeg * kPi / 180.0;
+  addNode(model, 1, 0.0, 0.0, 0.0);
+  const auto ring = [&](int r, int k) { return Id(2 + r * around + (k % around)); };
+  for (int r = 0; r < rings; ++r)
+    for (int k = 0; k < around; ++k) {
+      const double turn = 2.0 * kPi * k / around, slant = 10.0 * (r + 1) / rings;
+      addNode(model, ring(r, k), slant * std::sin(a) * std::cos(turn),
+              slant * std::sin(a) * std::sin(turn), slant * std::cos(a));
+    }
+  Id shell = 1;
+  for (int k = 0; k < around; ++k) addShell(model, shell++, 1, {1, ring(0, k), ring(0, k + 1)});
+  for (int r = 0; r + 1 < rings; ++r)
+    for (int k = 0; k < around; ++k)
+      addShell(model, shell++, 1, {ring(r, k), ring(r + 1, k), ring(r + 1, k + 1), ring(r, k + 1)});
+  return model;
 }
 
 }  // namespace voxremesh::test

@@ -69,6 +69,11 @@ void addNode(FeModel& model, Id id, double x, double y, double z = 0.0);
 /// Appends a shell (3 or 4 node IDs) of `part` to a model under construction.
 void addShell(FeModel& model, Id id, Id part, const std::vector<Id>& nodes);
 
+/// Part 1: a cone 10 long on its slant, tip (node 1) at the origin, axis along +z, with the given
+/// half angle (90: a flat disk), in `around` triangles at the tip and rings - 1 rows of quads;
+/// node 2 + r around + k is point k of ring r (0 next to the tip).
+FeModel coneModel(int around, int rings, double halfAngleDeg);
+
 }  // namespace voxremesh::test
 
 /// Skips the current test with a clear message when ../shared/data/NAME is missing.
