@@ -308,6 +308,22 @@ TEST(Pipeline, AWingSkinIsRemeshedSideBySideWithinItsDistanceAtItsTrailingEdge) 
   EXPECT_TRUE(found);
 }
 
+TEST(Pipeline, ANarrowPartMeshedFromItsBoundaryIsRetriedWithRowsHalfAsLong) {
+  // freedlm.bdf part 46: eight small triangles between the wing's ribs, every sheet narrow and
+  // meshed from its boundary. Its first rows leave a quarter of the elements failing; the retry
+  // meshes the sheets again with nodes half as far apart along their free sides, which passes.
+  VOXREMESH_REQUIRE_SHARED_DECK(path, "freedlm.bdf");
+  FeModel model = readDeck(path);
+  RemeshSettings settings;
+  settings.parts = {46};
+  const RemeshReport report = remeshDeck(model, settings);
+  ASSERT_EQ(report.parts.size(), 1u);
+  const RemeshedPart& part = report.parts[0];
+  EXPECT_EQ(part.status, PartStatus::Retried) << part.reason;
+  EXPECT_EQ(part.attempts, 2);
+  EXPECT_LE(part.acceptance.failingShare, settings.optimizeSettings.quality.maxFailingShare);
+}
+
 TEST(Pipeline, APointedConeKeepsItsTip) {
   // A cone of half angle 20 degrees, 10 long, at size 1.5: a volume rounds its tip off by more
   // than the distance limit (0.375). The tip is a feature point (sheets.h), so the mesh keeps a

@@ -317,6 +317,35 @@ std::vector<SheetPlan> boundaryPlans(const std::vector<Sheet>& sheets,
   return result;
 }
 
+/// The plans of a finer attempt: every sheet at half its size where that stays at `finest` or
+/// above, a volume at half the voxel, a boundary-meshed sheet meshed again with nodes half as far
+/// apart along its free stretches (as it was where that is refused). False when no sheet got
+/// finer.
+bool halveSheetSizes(std::vector<SheetPlan>& plans, const std::vector<Sheet>& sheets,
+                     const SheetHardPoints& hardPoints, const PartPlan& plan,
+                     const RemeshSettings& settings, double junctionSpacing, double finest) {
+  bool finer = false;
+  for (std::size_t k = 0; k < plans.size(); ++k) {
+    SheetPlan& sheetPlan = plans[k];
+    const double half = sheetPlan.size / 2;
+    if (half < finest * (1 - 1e-9)) continue;
+    if (sheetPlan.fromBoundary) {
+      try {
+        const QuadMesh surface = sheetSurface(sheets[k]);
+        const ReferenceSurface original(surface);
+        sheetPlan.boundaryMesh =
+            meshFromBoundary(sheets[k], surface, original, half, plan.targetSize, junctionSpacing,
+                             hardPoints[k], settings);
+      } catch (const extract::NarrowSheetRefusal&) {
+        continue;
+      }
+    }
+    sheetPlan.size = half;
+    finer = true;
+  }
+  return finer;
+}
+
 /// The first attempt's plan per sheet: a sheet narrower than settings.narrowFeatureVoxels target
 /// sizes is meshed from its boundary when it can be (nodes one target size apart along it, or its
 /// rowLength where that is less, so that its elements pass the aspect criterion), else
@@ -458,13 +487,9 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
   };
   try {
     for (int retry = 0; retry <= settings.retries; ++retry) {
-      if (retry > 0) {  // volumes at half the voxel, boundary-meshed sheets as they were
-        bool finer = false;
-        for (SheetPlan& sheetPlan : plans) {
-          if (sheetPlan.fromBoundary || sheetPlan.size / 2 < finest * (1 - 1e-9)) continue;
-          sheetPlan.size /= 2;
-          finer = true;
-        }
+      if (retry > 0) {
+        const bool finer =
+            halveSheetSizes(plans, sheets, hardPoints, plan, settings, junctionSpacing, finest);
         if (!finer) break;
       }
       if (attempt(plans, retry == 0)) return part;
