@@ -324,14 +324,19 @@ TEST(Pipeline, ANarrowPartMeshedFromItsBoundaryIsRetriedWithRowsHalfAsLong) {
   EXPECT_LE(part.acceptance.failingShare, settings.optimizeSettings.quality.maxFailingShare);
 }
 
+/// Remeshes a one-part model at the given target size with the default settings.
+RemeshReport remeshOnePart(FeModel& model, double size) {
+  RemeshSettings settings;
+  settings.targetSize = size;
+  return remeshDeck(model, settings);
+}
+
 TEST(Pipeline, APointedConeKeepsItsTip) {
   // A cone of half angle 20 degrees, 10 long, at size 1.5: a volume rounds its tip off by more
   // than the distance limit (0.375). The tip is a feature point (sheets.h), so the mesh keeps a
   // node there and stays within the limit.
   FeModel model = test::coneModel(24, 8, 20.0);
-  RemeshSettings settings;
-  settings.targetSize = 1.5;
-  const RemeshReport report = remeshDeck(model, settings);
+  const RemeshReport report = remeshOnePart(model, 1.5);
   ASSERT_EQ(report.parts.size(), 1u);
   const RemeshedPart& part = report.parts[0];
   EXPECT_NE(part.status, PartStatus::Kept) << part.reason;
@@ -468,23 +473,23 @@ TEST(Pipeline, ANeighbourOfAPartKeptAfterItsAttemptIsRemeshedAgainAlongItsSeam) 
   EXPECT_EQ(seamNodesShared(model), 11u);
 }
 
-/// An LS-DYNA deck up to its shells: a 12 x 12 plate of unit quads in part 1 (node (i, j): ID
-/// 1 + 13 j + i at (i + 0.013, j + 0.007, 0); shell (i, j): ID 1 + 12 j + i).
-std::string unitPlateDeck() {
+/// An LS-DYNA deck up to its shells: an nx x ny plate of unit quads in part 1 (node (i, j): ID
+/// 1 + (nx + 1) j + i at (i + 0.013, j + 0.007, 0); shell (i, j): ID 1 + nx j + i).
+std::string unitPlateDeck(int nx = 12, int ny = 12) {
   std::string deck = "*KEYWORD\n*NODE\n";
   char line[128];
-  for (int j = 0; j <= 12; ++j)
-    for (int i = 0; i <= 12; ++i) {
-      std::snprintf(line, sizeof line, "%8d%16.3f%16.3f%16.3f\n", 1 + 13 * j + i, 1.0 * i + 0.013,
-                    1.0 * j + 0.007, 0.0);
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      std::snprintf(line, sizeof line, "%8d%16.3f%16.3f%16.3f\n", 1 + (nx + 1) * j + i,
+                    1.0 * i + 0.013, 1.0 * j + 0.007, 0.0);
       deck += line;
     }
   deck += "*ELEMENT_SHELL\n";
-  for (int j = 0; j < 12; ++j)
-    for (int i = 0; i < 12; ++i) {
-      const int a = 1 + 13 * j + i;
-      std::snprintf(line, sizeof line, "%8d%8d%8d%8d%8d%8d\n", 1 + 12 * j + i, 1, a, a + 1, a + 14,
-                    a + 13);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int a = 1 + (nx + 1) * j + i;
+      std::snprintf(line, sizeof line, "%8d%8d%8d%8d%8d%8d\n", 1 + nx * j + i, 1, a, a + 1,
+                    a + nx + 2, a + nx + 1);
       deck += line;
     }
   return deck;
@@ -524,6 +529,28 @@ TEST(Pipeline, HardPointsKeepTheirIdAndCoordinatesAndSetsAreNoHardPoints) {
     }
   EXPECT_GE(shellsOnHardPoints, 3u);
   EXPECT_EQ(shellsOnOtherOldNodes, 0u) << "the set's nodes are a region: all replaced";
+}
+
+TEST(Pipeline, AHardPointInsideANarrowStripIsANodeOfItsRows) {
+  // A strip of 40 x 3 unit quads at size 4 is meshed from its boundary: one row of 4 x 3 quads,
+  // nodes on its sides only. A mass on the inner node (21, 1) is put into the row it lies in
+  // (that quad becomes triangles round it, merged again where they pass) instead of sending the
+  // strip to a volume a third of its width fine.
+  std::string deck = unitPlateDeck(40, 3);
+  deck += "*ELEMENT_MASS\n   90000      63             1.0       0\n*END\n";
+  const auto dir = test::scratchDir("hard_point_in_strip");
+  test::writeText(dir / "in.k", deck);
+  FeModel model = readDeck(dir / "in.k");
+  const std::array<double, 3> mass = model.nodes[model.nodeIndex().at(63)].xyz;
+  const RemeshReport report = remeshOnePart(model, 4.0);
+  ASSERT_EQ(report.parts.size(), 1u);
+  const RemeshedPart& part = report.parts[0];
+  ASSERT_NE(part.status, PartStatus::Kept) << part.reason;
+  EXPECT_GT(part.voxelSize, 1.5) << "meshed from its boundary, not through a finer volume";
+  EXPECT_EQ(report.assembly.hardPointsKept, 1u);
+  const std::unordered_map<Id, std::size_t> after = model.nodeIndex();
+  ASSERT_TRUE(after.count(63));
+  EXPECT_EQ(model.nodes[after.at(63)].xyz, mass);
 }
 
 TEST(Pipeline, ShellsOnASolidStayAndTheRestOfTheirPartIsRemeshedAroundThem) {

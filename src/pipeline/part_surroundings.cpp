@@ -7,6 +7,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "geometry/vec3.h"
 #include "pipeline/remesh_part.h"
 
 namespace voxremesh::pipeline {
@@ -126,6 +127,51 @@ std::size_t snapHardPoints(QuadMesh& mesh, const std::vector<Point3>& points, do
     ++placed;
   }
   return placed;
+}
+
+namespace {
+
+/// True when `target` lies within `reach` of the plane of `face` (its elementNormal) and strictly
+/// on the inner side of each of its edges seen along that normal.
+bool insideFace(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face, const Point3& target,
+                double reach) {
+  using namespace geom;  // NOLINT: the vector operators
+  const int n = cornerCount(face);
+  const auto& p = mesh.points;
+  const Vec3 normal = normalized(
+      elementNormal(p[face[0]], p[face[1]], p[face[2]], p[face[n == 3 ? 2 : 3]], n == 3));
+  if (!(norm(normal) > 0.0) || std::abs(dot(target - p[face[0]], normal)) > reach) return false;
+  for (int k = 0; k < n; ++k) {
+    const Vec3& a = p[face[std::size_t(k)]];
+    const Vec3& b = p[face[std::size_t((k + 1) % n)]];
+    if (!(dot(cross(b - a, target - a), normal) > 0.0)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::size_t insertHardPoints(QuadMesh& mesh, const std::vector<Point3>& points, double reach) {
+  mesh.constraints.resize(mesh.points.size());
+  std::size_t inserted = 0;
+  for (const Point3& target : points) {
+    if (missingPoints(mesh, {target}) == 0) continue;
+    const auto face = std::find_if(mesh.faces.begin(), mesh.faces.end(), [&](const auto& f) {
+      return insideFace(mesh, f, target, reach);
+    });
+    if (face == mesh.faces.end()) continue;
+    const std::array<CornerIndex, 4> corners = *face;
+    const int n = cornerCount(corners);
+    const auto point = CornerIndex(mesh.points.size());
+    mesh.points.push_back(target);
+    mesh.constraints.push_back({PointRole::Corner, kNoCurve});
+    *face = {corners[0], corners[1], point, kNoCorner};
+    for (int k = 1; k < n; ++k)
+      mesh.faces.push_back(
+          {corners[std::size_t(k)], corners[std::size_t((k + 1) % n)], point, kNoCorner});
+    ++inserted;
+  }
+  return inserted;
 }
 
 std::size_t missingPoints(const QuadMesh& mesh, const std::vector<Point3>& points,

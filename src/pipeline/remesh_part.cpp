@@ -80,7 +80,8 @@ QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
   QuadMesh mesh = extract::meshNarrowSheet(
       sheet, surface, original,
       sheetJunctionNodes(sheet, extractJunctionSpacing(settings, junctionSpacing)), narrow);
-  const std::size_t placed = snapHardPoints(mesh, hardPoints, spacing);
+  const std::size_t placed = snapHardPoints(mesh, hardPoints, spacing) +
+                             insertHardPoints(mesh, hardPoints, narrow.tolerance);
   if (placed < hardPoints.size())
     throw extract::NarrowSheetRefusal(std::to_string(hardPoints.size() - placed) + " of its " +
                                       std::to_string(hardPoints.size()) +

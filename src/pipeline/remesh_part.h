@@ -89,6 +89,13 @@ std::vector<std::vector<Point3>> placeHardPoints(std::vector<Sheet>& sheets,
 /// @return how many of `points` found a partner
 std::size_t snapHardPoints(QuadMesh& mesh, const std::vector<Point3>& points, double reach);
 
+/// Each of `points` that is not a point of `mesh` yet and lies inside one of its faces (within
+/// `reach` of the face's plane, on the inner side of every edge) becomes a fixed point (role
+/// Corner) of it: the face is replaced by the fan of triangles from its edges to the point, in its
+/// orientation (the optimisation may merge them into quads again).
+/// @return how many of `points` were inserted
+std::size_t insertHardPoints(QuadMesh& mesh, const std::vector<Point3>& points, double reach);
+
 /// How many of `points` are not points of `mesh`: no point of it within `tolerance` in every
 /// coordinate (0: bit-identical coordinates).
 std::size_t missingPoints(const QuadMesh& mesh, const std::vector<Point3>& points,
