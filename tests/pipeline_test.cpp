@@ -12,6 +12,7 @@
 #include "voxremesh/io.h"
 #include "voxremesh/pipeline.h"
 #include "voxremesh/progress.h"
+#include "voxremesh/quality.h"
 
 using namespace voxremesh;
 
@@ -345,6 +346,55 @@ TEST(Pipeline, APointedConeKeepsItsTip) {
   for (const Node& node : model.nodes)
     tip = tip || std::hypot(node.xyz[0], node.xyz[1], node.xyz[2]) < 1e-9;
   EXPECT_TRUE(tip);
+}
+
+/// A tube of the given radius along z, `rings` quads of 5 long, `around` quads round; with
+/// `doubledSeam`, the last column of quads ends on nodes of its own at the first column's
+/// coordinates (a slit of coincident node pairs).
+FeModel tubeModel(double radius, int around, int rings, bool doubledSeam) {
+  FeModel model;
+  const int columns = doubledSeam ? around + 1 : around;
+  const auto node = [&](int i, int k) { return Id(1 + k * columns + i % columns); };
+  for (int k = 0; k <= rings; ++k)
+    for (int i = 0; i < columns; ++i) {
+      const double angle = 2.0 * std::acos(-1.0) * (i % around) / around;
+      test::addNode(model, node(i, k), radius * std::cos(angle), radius * std::sin(angle), 5.0 * k);
+    }
+  Id shell = 1;
+  for (int k = 0; k < rings; ++k)
+    for (int i = 0; i < around; ++i)
+      test::addShell(model, shell++, 1,
+                     {node(i, k), node(i + 1, k), node(i + 1, k + 1), node(i, k + 1)});
+  return model;
+}
+
+TEST(Pipeline, ATubeTooFewElementsRoundToKeepItsAreaIsRetriedFiner) {
+  // At size 10 a tube of radius 20 is about 13 quads round: within the distance limit (its
+  // chords are 0.6 from the circle, the limit 2.5), but 1.1 % of its area (its mass) is gone.
+  // The part is retried at size 5, with 0.3 % less area.
+  FeModel model = tubeModel(20.0, 48, 8, false);
+  const RemeshReport report = remeshOnePart(model, 10.0);
+  ASSERT_EQ(report.parts.size(), 1u);
+  const RemeshedPart& part = report.parts[0];
+  EXPECT_EQ(part.status, PartStatus::Retried) << part.reason;
+  EXPECT_LE(std::abs(part.acceptance.areaAfter - part.acceptance.areaBefore),
+            0.01 * part.acceptance.areaBefore);
+}
+
+TEST(Pipeline, ATubeWithItsSeamRowOfNodesDoubledIsRemeshedClosed) {
+  // A tube of radius 10 and length 40 (24 quads round, 8 along) whose last column of quads ends
+  // on nodes of their own at the coordinates of the first column's: a slit of 9 coincident node
+  // pairs that the input calls a boundary. The part's surface is a closed tube; it is remeshed
+  // as one, with the 2 end loops of the tube, and the merge is reported.
+  FeModel model = tubeModel(10.0, 24, 8, true);
+  const RemeshReport report = remeshOnePart(model, 4.0);
+  ASSERT_EQ(report.parts.size(), 1u);
+  const RemeshedPart& part = report.parts[0];
+  EXPECT_NE(part.status, PartStatus::Kept) << part.reason;
+  EXPECT_TRUE(test::contains(part.reason, "9 coincident nodes")) << part.reason;
+  EXPECT_EQ(part.acceptance.loopsBefore, 2u);
+  EXPECT_EQ(part.acceptance.loopsAfter, 2u);
+  EXPECT_EQ(topologyCounts(quadMeshFromModel(model, 1)).boundaryLoops, 2u);
 }
 
 /// A 60 x 60 plate of 3-unit quads in z = 0 (part 1) with a stiffener 9 tall of 3-unit quads

@@ -169,6 +169,7 @@ struct PartAcceptance {
   std::size_t degenerateCorners = 0;  ///< quads with a corner of (almost) 180 degrees
   std::size_t componentsBefore = 0, componentsAfter = 0;
   std::size_t loopsBefore = 0, loopsAfter = 0;
+  double areaBefore = 0.0, areaAfter = 0.0;  ///< of the part's shells: its mass at one thickness
 };
 
 /// What remeshDeck did to one part.

@@ -7,6 +7,7 @@
 
 #include "geometry/vec3.h"
 #include "pipeline/remesh_part.h"
+#include "voxremesh/deck_compare.h"
 
 namespace voxremesh::pipeline {
 
@@ -32,6 +33,18 @@ std::string formatNumber(double value) {
 
 namespace {
 
+/// The area of a mesh's faces (half the norm of elementNormal per face).
+double meshArea(const QuadMesh& mesh) {
+  double area = 0.0;
+  for (const auto& face : mesh.faces) {
+    const bool triangle = cornerCount(face) == 3;
+    area +=
+        0.5 * norm(elementNormal(mesh.points[face[0]], mesh.points[face[1]], mesh.points[face[2]],
+                                 mesh.points[face[triangle ? 2 : 3]], triangle));
+  }
+  return area;
+}
+
 /// The first failed check of an acceptance, in words (empty when all pass).
 std::string failedCheck(const PartAcceptance& a, const QualitySettings& settings) {
   if (a.componentsAfter != a.componentsBefore)
@@ -46,6 +59,9 @@ std::string failedCheck(const PartAcceptance& a, const QualitySettings& settings
   if (a.folded > 0) return std::to_string(a.folded) + " folded elements";
   if (a.degenerateCorners > 0)
     return std::to_string(a.degenerateCorners) + " quads with a corner of 180 degrees";
+  if (std::abs(a.areaAfter - a.areaBefore) > kAreaTolerance * a.areaBefore)
+    return "area changed by " + formatNumber(100.0 * (a.areaAfter - a.areaBefore) / a.areaBefore) +
+           " % (limit " + formatNumber(100.0 * kAreaTolerance) + " %)";
   if (a.failingShare > settings.maxFailingShare)
     return formatNumber(100.0 * a.failingShare) + " % of the elements fail a criterion (limit " +
            formatNumber(100.0 * settings.maxFailingShare) + " %)";
@@ -132,6 +148,8 @@ PartAcceptance acceptPartMesh(const QuadMesh& mesh, const QuadMesh& original,
   a.componentsAfter = after.components;
   a.loopsBefore = before.boundaryLoops;
   a.loopsAfter = after.boundaryLoops;
+  a.areaBefore = meshArea(original);
+  a.areaAfter = meshArea(mesh);
   a.reason = failedCheck(a, judged);
   a.accepted = a.reason.empty();
   return a;

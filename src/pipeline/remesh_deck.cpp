@@ -33,13 +33,20 @@ double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// Nodes of a part closer than this share of its target size are one node of its surface: a
+/// slit between them is no boundary a remesh could keep.
+constexpr double kCoincidentShare = 1e-3;
+
 /// For each plan, a model holding the part's shells plus the shells of other parts that share a
 /// node with it (so that buildSheets still finds the seams), and the nodes they use: sheets and
 /// volumes then cost what the part costs, not what the deck costs. `junctionSpacing` receives per
 /// plan the smallest target size among it and the planned parts it shares nodes with, so that
-/// both sides of a seam place the same nodes on it.
+/// both sides of a seam place the same nodes on it. A part's own coincident nodes are merged in
+/// its model (mergeCoincidentNodes, within kCoincidentShare of its target size); `mergedNodes`
+/// receives per plan how many.
 std::vector<FeModel> partModels(const FeModel& deck, const std::vector<PartPlan>& plans,
-                                std::vector<double>& junctionSpacing) {
+                                std::vector<double>& junctionSpacing,
+                                std::vector<std::size_t>& mergedNodes) {
   std::unordered_map<Id, std::size_t> planOf;
   for (std::size_t i = 0; i < plans.size(); ++i) planOf[plans[i].part] = i;
   const std::unordered_map<Id, std::size_t> nodeIndex = deck.nodeIndex();
@@ -75,12 +82,16 @@ std::vector<FeModel> partModels(const FeModel& deck, const std::vector<PartPlan>
     }
     for (const std::size_t plan : targets) models[plan].shells.push_back(shell);
   }
-  for (FeModel& model : models) {
+  mergedNodes.assign(plans.size(), 0);
+  for (std::size_t i = 0; i < plans.size(); ++i) {
+    FeModel& model = models[i];
     std::unordered_set<Id> used;
     for (const Shell& shell : model.shells)
       for (int c = 0; c < shell.nodeCount; ++c)
         if (used.insert(shell.nodes[static_cast<std::size_t>(c)]).second)
           model.nodes.push_back(deck.nodes[nodeIndex.at(shell.nodes[static_cast<std::size_t>(c)])]);
+    mergedNodes[i] = pipeline::mergeCoincidentNodes(model, plans[i].part,
+                                                    kCoincidentShare * plans[i].targetSize);
   }
   return models;
 }
@@ -284,7 +295,8 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
     tell("extract", plans[i].part, true);
   }
   std::vector<double> junctionSpacing;
-  const std::vector<FeModel> models = partModels(deck, plans, junctionSpacing);
+  std::vector<std::size_t> mergedNodes;
+  const std::vector<FeModel> models = partModels(deck, plans, junctionSpacing, mergedNodes);
   std::unordered_map<Id, double> seamSpacing;
   arena.execute(
       [&] { seamSpacing = pipeline::seamNodeSpacing(models, plans, keptFromStart, settings); });
@@ -337,6 +349,12 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
   report.assembly = replacePartMeshes(deck, accepted, allHardPoints);
   held.restore();
   for (std::size_t i = 0; i < plans.size(); ++i) {
+    std::string& reason = report.parts[i].reason;
+    if (mergedNodes[i] > 0 && report.parts[i].status != PartStatus::Kept)
+      reason = (reason.empty() ? "" : reason + "; ") + std::to_string(mergedNodes[i]) +
+               " coincident nodes of the part merged (remeshed as one surface)";
+  }
+  for (std::size_t i = 0; i < plans.size(); ++i) {
     if (keptFromStart[i] || onSolids[i].empty()) continue;
     std::string& reason = report.parts[i].reason;
     reason = std::to_string(onSolids[i].size()) + " of its " + std::to_string(plans[i].shells) +
@@ -369,11 +387,16 @@ std::string remeshReportJson(const RemeshReport& report) {
                   a.degenerateCorners, a.componentsBefore, a.componentsAfter, a.loopsBefore,
                   a.loopsAfter);
     out += buffer;
-    const std::pair<const char*, double> numbers[] = {
-        {"target_size", part.plan.targetSize},    {"voxel_size", part.voxelSize},
-        {"failing_share", a.failingShare},        {"distance", a.distance},
-        {"distance_limit", a.distanceLimit},      {"volume_seconds", part.volumeSeconds},
-        {"extract_seconds", part.extractSeconds}, {"optimize_seconds", part.optimizeSeconds}};
+    const std::pair<const char*, double> numbers[] = {{"target_size", part.plan.targetSize},
+                                                      {"voxel_size", part.voxelSize},
+                                                      {"failing_share", a.failingShare},
+                                                      {"distance", a.distance},
+                                                      {"distance_limit", a.distanceLimit},
+                                                      {"area_before", a.areaBefore},
+                                                      {"area_after", a.areaAfter},
+                                                      {"volume_seconds", part.volumeSeconds},
+                                                      {"extract_seconds", part.extractSeconds},
+                                                      {"optimize_seconds", part.optimizeSeconds}};
     for (const auto& [key, value] : numbers) {
       out += std::string(", \"") + key + "\": ";
       if (std::isfinite(value))

@@ -37,6 +37,14 @@ PartAcceptance acceptPartMesh(const QuadMesh& mesh, const QuadMesh& original,
                               double askedSize, const QualitySettings& settings,
                               const std::vector<MeshCurve>& channels);
 
+/// Makes a part's unmerged coincident nodes one: in the shells of `part`, every node within
+/// `tolerance` (in each coordinate) of a node with a smaller ID is replaced by that node, so that
+/// a slit between doubled rows of nodes (a tube meshed round with its seam row doubled) is no
+/// boundary. Only nodes that no other shell of `model` uses take part: seams with other parts
+/// keep their nodes. Deterministic. Returns how many nodes the part no longer uses.
+/// Preconditions: the shells name nodes of the model; tolerance >= 0.
+std::size_t mergeCoincidentNodes(FeModel& model, Id part, double tolerance);
+
 /// The faces of a sheet as a mesh (oriented as the sheet), the surface its new mesh is projected
 /// on and checked against.
 QuadMesh sheetSurface(const Sheet& sheet);
