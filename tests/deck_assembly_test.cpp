@@ -388,6 +388,47 @@ TEST(DeckAssembly, NastranFieldsAreRewrittenInTheirColumns) {
   EXPECT_EQ(back.shells.size(), 1u);
 }
 
+TEST(DeckAssembly, ANodeOfAKeptPartThatOnlyCoincidesWithANewPointStaysApart) {
+  // Grid 2 (a corner of part 1's quad) and grid 5 (a corner of part 2's quad) lie at the same
+  // place, joined by an RBE2 only. Part 1 is remeshed with a point there: the point keeps the
+  // hard point's ID 2, not the kept part's node 5, so the parts stay unconnected and the RBE2
+  // still joins two nodes.
+  const auto dir = scratchDir("assembly_coincident_rbe2");
+  writeText(dir / "in.bdf",
+            "BEGIN BULK\n"
+            "GRID           1              0.      0.      0.\n"
+            "GRID           2              1.      0.      0.\n"
+            "GRID           3              1.      1.      0.\n"
+            "GRID           4              0.      1.      0.\n"
+            "GRID           5              1.      0.      0.\n"
+            "GRID           6              2.      0.      0.\n"
+            "GRID           7              2.      1.      0.\n"
+            "GRID           8              1.      1.      1.\n"
+            "CQUAD4       101       1       1       2       3       4\n"
+            "CQUAD4       102       2       5       6       7       8\n"
+            "RBE2        5000       5  123456       2\n"
+            "PSHELL         1       1     1.0\n"
+            "PSHELL         2       1     1.0\n"
+            "MAT1           1  2.1+5            .3\n"
+            "ENDDATA\n");
+  FeModel model = readDeck(dir / "in.bdf");
+  QuadMesh mesh;
+  mesh.part = 1;
+  mesh.points = {{0, 0, 0}, {0.5, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0.5, 1, 0}, {0, 1, 0}};
+  mesh.faces = {{0, 1, 4, 5}, {1, 2, 3, 4}};
+  const AssemblyReport report = replacePartMeshes(model, {mesh}, {2});
+  EXPECT_EQ(report.hardPointsKept, 1u);
+  EXPECT_EQ(report.seamPoints, 0u);
+  for (const Shell& shell : model.shells) {
+    if (shell.part != 1) continue;
+    const auto end = shell.nodes.begin() + shell.nodeCount;
+    EXPECT_EQ(std::find(shell.nodes.begin(), end, Id(5)), end) << "shell " << shell.id;
+  }
+  writeDeck(model, dir / "out.bdf");
+  const std::string out = readText(dir / "out.bdf");
+  EXPECT_NE(out.find("RBE2        5000       5  123456       2\n"), std::string::npos) << out;
+}
+
 TEST(DeckAssembly, NastranSetAndSpcListsCoverTheSameRegionOfTheNewMesh) {
   // A 2 x 2 plate of unit quads remeshed as 3 x 3 quads of side 2/3: the SET1 of all 9 grids (on
   // a continuation line) must list the 16 new grids, the free-format SPC1 of the side x = 0 the

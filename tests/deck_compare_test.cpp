@@ -176,3 +176,20 @@ TEST(DeckCompare, WingboxRemeshedAtTwiceItsSizeKeepsItsPressureForce) {
   EXPECT_LT(change, 0.01 * before);
   EXPECT_TRUE(comparison.losses.empty()) << formatComparisonTable(comparison);
 }
+
+TEST(DeckCompare, FreedlmRibsRemeshedNextToTheirRigidLinksLoseNothing) {
+  // freedlm.bdf parts 13 and 19 hold grids 24005 and 28041, which RBE2 9 and 10 join to grids of
+  // other parts at the same coordinates. Those parts are not remeshed: the new nodes there must
+  // keep the hard points' IDs, not take the other parts' coincident nodes (which would leave the
+  // RBE2s joining a node to itself and connect the parts directly).
+  VOXREMESH_REQUIRE_SHARED_DECK(freedlm, "freedlm.bdf");
+  const auto dir = scratchDir("compare_freedlm");
+  const auto remeshed =
+      runCli("remesh " + quoted(freedlm) + " --parts 13,19 -o " + quoted(dir / "out.bdf"));
+  ASSERT_TRUE(remeshed.exitCode == 0 || remeshed.exitCode == 3) << remeshed.output;
+  const DeckComparison comparison = compareDecks(readDeck(freedlm), readDeck(dir / "out.bdf"));
+  EXPECT_GT(comparison.hardPoints, 0u);
+  EXPECT_TRUE(comparison.losses.empty()) << formatComparisonTable(comparison);
+  const std::string out = test::readText(dir / "out.bdf");
+  EXPECT_NE(out.find("RBE2     10      19506   123     24005"), std::string::npos);
+}

@@ -11,9 +11,11 @@
 // - New node IDs: points of the meshes in mesh order, then point order, get consecutive IDs from
 //   one above the largest node ID of the input deck (removed nodes included, so that a stale
 //   reference can never name a new node). Two points become one node when
-//   (a) a point has bit-identical coordinates to a kept-shell node: it takes that node's ID (the
-//       lowest ID when several kept-shell nodes share the coordinates), so a seam with a part
-//       that is not remeshed stays conforming; or
+//   (a) a point has bit-identical coordinates to a kept-shell node that its part's old shells
+//       used (a seam node): it takes that node's ID (the lowest ID when several such nodes share
+//       the coordinates), so a seam with a part that is not remeshed stays conforming, while a
+//       node of another part that only coincides with the new point (joined by a rigid element
+//       or a weld, or not at all) stays apart; or
 //   (b) two points of meshes of different parts both have PointRole::Junction and bit-identical
 //       coordinates: the later one takes the earlier one's node; or
 //   (c) a point has bit-identical coordinates to a hard point (an old node that other keywords

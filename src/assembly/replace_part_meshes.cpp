@@ -109,6 +109,7 @@ AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& ne
   std::unordered_set<Id> partNodes;  // all nodes of those shells
   std::vector<Shell> oldShells;      // those shells
   std::unordered_map<Id, std::vector<std::size_t>> meshesOfOldNode;
+  std::unordered_map<Id, std::vector<std::size_t>> meshesOfSeamNode;  // kept nodes they shared
   std::vector<PartTemplate> templates(newParts.size());
   std::vector<std::map<std::uint8_t, std::size_t>> typeCounts(newParts.size());
   std::vector<bool> anyExtras(newParts.size(), false);
@@ -125,7 +126,11 @@ AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& ne
     for (int c = 0; c < shell.nodeCount; ++c) {
       const Id node = shell.nodes[static_cast<std::size_t>(c)];
       partNodes.insert(node);
-      if (keptShellNodes.count(node)) continue;
+      if (keptShellNodes.count(node)) {
+        std::vector<std::size_t>& meshes = meshesOfSeamNode[node];
+        if (std::find(meshes.begin(), meshes.end(), m) == meshes.end()) meshes.push_back(m);
+        continue;
+      }
       oldNodes.insert(node);
       std::vector<std::size_t>& meshes = meshesOfOldNode[node];
       if (std::find(meshes.begin(), meshes.end(), m) == meshes.end()) meshes.push_back(m);
@@ -151,12 +156,22 @@ AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& ne
   for (const Node& node : model.nodes) maxNode = std::max(maxNode, node.id);
   Id maxElement = assembly::maxVerbatimElementId(model);
   for (const Shell& shell : model.shells) maxElement = std::max(maxElement, shell.id);
-  std::unordered_map<PointBits, Id, PointBitsHash> keptAt;
-  for (const Node& node : model.nodes) {
-    if (!keptShellNodes.count(node.id)) continue;
-    const auto [it, inserted] = keptAt.emplace(PointBits(node.xyz), node.id);
-    if (!inserted && node.id < it->second) it->second = node.id;
-  }
+  // Rule (a): the seam nodes (kept-shell nodes the remeshed parts' shells used) by position, in
+  // ascending ID order.
+  std::unordered_map<PointBits, std::vector<Id>, PointBitsHash> keptAt;
+  for (const Node& node : model.nodes)
+    if (meshesOfSeamNode.count(node.id)) keptAt[PointBits(node.xyz)].push_back(node.id);
+  for (auto& [key, ids] : keptAt) std::sort(ids.begin(), ids.end());
+  // The seam node of mesh m at a point's position, or 0.
+  const auto seamNodeAt = [&](const PointBits& key, std::size_t m) -> Id {
+    const auto found = keptAt.find(key);
+    if (found == keptAt.end()) return 0;
+    for (const Id id : found->second) {
+      const std::vector<std::size_t>& meshes = meshesOfSeamNode.at(id);
+      if (std::find(meshes.begin(), meshes.end(), m) != meshes.end()) return id;
+    }
+    return 0;
+  };
   // Rule (c): the hard points among the old nodes, by position, with the meshes of their parts.
   std::unordered_map<PointBits, std::pair<Id, std::vector<std::size_t>>, PointBitsHash> hardAt;
   for (const Node& node : model.nodes) {
@@ -176,8 +191,8 @@ AssemblyReport replacePartMeshes(FeModel& model, const std::vector<QuadMesh>& ne
     pointIds[m].resize(mesh.points.size());
     for (std::size_t p = 0; p < mesh.points.size(); ++p) {
       const PointBits key(mesh.points[p]);
-      if (const auto kept = keptAt.find(key); kept != keptAt.end()) {
-        pointIds[m][p] = kept->second;
+      if (const Id seam = seamNodeAt(key, m)) {
+        pointIds[m][p] = seam;
         ++report.seamPoints;
         continue;
       }
