@@ -397,6 +397,39 @@ TEST(Pipeline, ATubeWithItsSeamRowOfNodesDoubledIsRemeshedClosed) {
   EXPECT_EQ(topologyCounts(quadMeshFromModel(model, 1)).boundaryLoops, 2u);
 }
 
+TEST(Pipeline, APartLostToAKeptNeighbourSaysItsFirstMeshPassed) {
+  // A 12 x 12 plate (part 1) of 0.25 x 1 quads with a flange 1 tall (part 2) on its edge y = 0,
+  // sharing its 49 nodes there; the flange has a duplicate shell and is kept. At size 4 the plate
+  // passes its first round (the seam gets the flange's spacing); done again with the flange's
+  // 49 nodes on the seam, its elements there fail, and its reason says what happened.
+  FeModel model;
+  const auto plateNode = [](int i, int j) { return Id(1 + j * 49 + i); };
+  for (int j = 0; j <= 12; ++j)
+    for (int i = 0; i <= 48; ++i) test::addNode(model, plateNode(i, j), 0.25 * i, 1.0 * j);
+  for (int i = 0; i <= 48; ++i) test::addNode(model, Id(1000 + i), 0.25 * i, 0.0, 1.0);
+  Id shell = 1;
+  for (int j = 0; j < 12; ++j)
+    for (int i = 0; i < 48; ++i)
+      test::addShell(
+          model, shell++, 1,
+          {plateNode(i, j), plateNode(i + 1, j), plateNode(i + 1, j + 1), plateNode(i, j + 1)});
+  for (int i = 0; i < 48; ++i)
+    test::addShell(model, shell++, 2,
+                   {plateNode(i + 1, 0), plateNode(i, 0), Id(1000 + i), Id(1001 + i)});
+  test::addShell(model, shell++, 2, {plateNode(1, 0), plateNode(0, 0), Id(1000), Id(1001)});
+  RemeshSettings settings;
+  settings.targetSize = 4.0;
+  const RemeshReport report = remeshDeck(model, settings);
+  ASSERT_EQ(report.parts.size(), 2u);
+  EXPECT_EQ(report.parts[1].status, PartStatus::Kept);
+  const RemeshedPart& plate = report.parts[0];
+  ASSERT_EQ(plate.status, PartStatus::Kept) << plate.reason;
+  EXPECT_TRUE(test::contains(plate.reason,
+                             "its first mesh passed, but not with its seams along "
+                             "kept part 2 keeping their nodes: "))
+      << plate.reason;
+}
+
 /// A 60 x 60 plate of 3-unit quads in z = 0 (part 1) with a stiffener 9 tall of 3-unit quads
 /// (part `stiffenerPart`, 2 by default) standing on the line y = 30 from x = 3 x `from` to
 /// 3 x `to`: they share its nodes.

@@ -196,6 +196,30 @@ std::vector<Id> otherParts(const FeModel& model, Id part) {
   return parts;
 }
 
+/// The parts of `fixed` (ascending IDs) whose shells are in `part`'s model: its kept neighbours.
+std::vector<Id> keptNeighbours(const FeModel& model, Id part, const std::vector<Id>& fixed) {
+  std::vector<Id> result;
+  for (const Id other : otherParts(model, part))
+    if (std::binary_search(fixed.begin(), fixed.end(), other)) result.push_back(other);
+  return result;
+}
+
+/// The reason of a part kept when it was done again in a later round: what its earlier round
+/// gave, so that a part lost to a kept neighbour says so. `before`: the earlier round's result;
+/// `after`: this round's (kept); `itself`: the part was kept in the earlier round and tried again
+/// with all its seams fixed.
+std::string redoneReason(const RemeshedPart& before, const RemeshedPart& after, bool itself,
+                         const std::vector<Id>& neighbours) {
+  if (itself)
+    return before.reason + "; again with every seam keeping its neighbours' nodes: " + after.reason;
+  if (before.status == PartStatus::Kept) return after.reason;
+  std::string parts;
+  for (const Id part : neighbours) parts += (parts.empty() ? "" : ", ") + std::to_string(part);
+  return "its first mesh passed, but not with its seams along kept part" +
+         std::string(neighbours.size() == 1 ? " " : "s ") + parts +
+         " keeping their nodes: " + after.reason;
+}
+
 /// The parts with shells that `plans` leaves out (ascending IDs): they keep their elements.
 std::vector<Id> unplannedParts(const FeModel& deck, const std::vector<PartPlan>& plans) {
   std::vector<Id> planned;
@@ -323,9 +347,13 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
         const pipeline::PartSurroundings surroundings{
             junctionSpacing[i], isFixed ? otherParts(models[i], plans[i].part) : fixed,
             hardPoints[i], &seamSpacing};
-        report.parts[i] =
+        RemeshedPart result =
             pipeline::remeshPart(models[i], plans[i], settings, surroundings, meshes[i],
                                  [&](const char* stage) { tell(stage, plans[i].part, false); });
+        if (!first && result.status == PartStatus::Kept)
+          result.reason = redoneReason(report.parts[i], result, isFixed,
+                                       keptNeighbours(models[i], plans[i].part, fixed));
+        report.parts[i] = std::move(result);
         if (first) tell("extract", plans[i].part, true);
       });
     });
