@@ -993,6 +993,39 @@ TEST(Sheets, JunctionCurvesEndWhereTheSeamChangesItsPartner) {
   }
 }
 
+TEST(Sheets, ASeamIsWhereTheOtherPartRunsAlongNotWhereItTouchesBothEnds) {
+  // Part 1, a 5 x 2 plate (node (i, j): 1 + 6 j + i). Part 2 stands on its rows j = 0 and j = 1
+  // (two walls, a hat section's flanges on a skin): the plate's edges from row 0 to row 1 have
+  // both nodes on part 2 but are none of its edges, and no seam. Part 3 stands on row j = 2 with
+  // a node of its own between every two of the plate's: its edges run along the plate's, which
+  // are a seam even though no shell of part 3 has them.
+  FeModel m;
+  addSheet(m, 1, 1, 5, 2, [](int i, int j) { return Vec3{double(i), double(j), 0.0}; });
+  const auto plate = [](int i, int j) { return Id(1 + 6 * j + i); };
+  for (int j = 0; j <= 1; ++j)
+    for (int i = 0; i <= 5; ++i) addNode(m, Id(100 + 10 * j + i), i, j, 1.0);
+  for (int j = 0; j <= 1; ++j)
+    for (int i = 0; i < 5; ++i)
+      addShell(m, nextShellId(m), 2,
+               {plate(i, j), plate(i + 1, j), Id(101 + 10 * j + i), Id(100 + 10 * j + i)});
+  for (int h = 0; h <= 10; ++h) addNode(m, Id(300 + h), 0.5 * h, 2.0, -1.0);
+  for (int h = 1; h < 10; h += 2) addNode(m, Id(400 + h), 0.5 * h, 2.0, 0.0);
+  const auto row = [&](int h) { return h % 2 == 0 ? plate(h / 2, 2) : Id(400 + h); };
+  for (int h = 0; h < 10; ++h)
+    addShell(m, nextShellId(m), 3, {row(h + 1), row(h), Id(300 + h), Id(301 + h)});
+  std::set<std::pair<Id, Id>> seamEdges;
+  for (const Sheet& sheet : buildSheets(m, 1))
+    for (const Polyline& curve : sheet.junctionCurves) {
+      const std::vector<Id> ids = nodeIds(sheet, curve);
+      for (std::size_t k = 0; k + 1 < ids.size(); ++k)
+        seamEdges.insert({std::min(ids[k], ids[k + 1]), std::max(ids[k], ids[k + 1])});
+    }
+  std::set<std::pair<Id, Id>> expected;
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i < 5; ++i) expected.insert({plate(i, j), plate(i + 1, j)});
+  EXPECT_EQ(seamEdges, expected);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Settings, determinism, robustness
 

@@ -73,8 +73,11 @@ struct ModelContext {
   /// The edge between nodes u and v (model node indices) is a cut (a fold's or a seam's).
   bool isCut(Index u, Index v) const;
 
-  /// Nodes u and v (model node indices) are both used by shells of one part entry other than
-  /// `part`.
+  /// Nodes u and v (model node indices) lie on a seam with a part entry other than `part`: a shell
+  /// of such a part has the edge u-v, or shells of such parts have edges from u towards v and from
+  /// v towards u (within 15 degrees: the seam's two sides have different nodes along it). Two
+  /// nodes another part uses on lines that cross u-v (a frame standing on two rings of a skin) are
+  /// not a seam.
   bool sharedWithOtherPart(Index u, Index v, Index part) const;
 
   /// True when junction curves must end at node v (model node index), whichever part or sheet

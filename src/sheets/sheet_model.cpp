@@ -8,24 +8,41 @@
 
 namespace voxremesh::sheets {
 
-bool ModelContext::sharedWithOtherPart(Index u, Index v, Index part) const {
-  if (sharedBegin.empty()) return false;
-  const Index* a = sharedParts.data() + sharedBegin[u];
-  const Index* aEnd = sharedParts.data() + sharedBegin[u + 1];
-  const Index* b = sharedParts.data() + sharedBegin[v];
-  const Index* bEnd = sharedParts.data() + sharedBegin[v + 1];
-  while (a != aEnd && b != bEnd) {
-    if (*a < *b) {
-      ++a;
-    } else if (*b < *a) {
-      ++b;
-    } else {
-      if (*a != part) return true;
-      ++a;
-      ++b;
+namespace {
+
+/// Shells of another part than `part` meeting along segment u-v point at most this far (degrees)
+/// from it with an edge at u: a seam whose two sides have different nodes along it.
+constexpr double kSeamDirectionDeg = 15.0;
+
+/// True when a shell of a part entry other than `part` has an edge from node u to v, or (`along`)
+/// an edge from u within kSeamDirectionDeg of the direction to v.
+bool otherPartEdgeFrom(const ModelContext& context, Index u, Index v, Index part, bool along) {
+  const auto& xyz = [&](Index n) { return context.model.nodes[n].xyz; };
+  const Vec3 towards{xyz(v)[0] - xyz(u)[0], xyz(v)[1] - xyz(u)[1], xyz(v)[2] - xyz(u)[2]};
+  for (Index i = context.shellsBegin[u]; i < context.shellsBegin[u + 1]; ++i) {
+    const Index s = context.shellsAt[i];
+    if (context.shellEntry[s] == part) continue;
+    const ShellCorners& c = context.corners[s];
+    for (unsigned k = 0; k < c.count; ++k) {
+      if (c.node[k] != u) continue;
+      for (const Index w : {c.node[(k + 1) % c.count], c.node[(k + c.count - 1) % c.count]}) {
+        if (w == v) return true;
+        const Vec3 edge{xyz(w)[0] - xyz(u)[0], xyz(w)[1] - xyz(u)[1], xyz(w)[2] - xyz(u)[2]};
+        if (along && w != u && angleDeg(edge, towards) < kSeamDirectionDeg) return true;
+      }
     }
   }
   return false;
+}
+
+}  // namespace
+
+bool ModelContext::sharedWithOtherPart(Index u, Index v, Index part) const {
+  if (sharedBegin.empty() || sharedBegin[u] == sharedBegin[u + 1] ||
+      sharedBegin[v] == sharedBegin[v + 1])
+    return false;
+  return otherPartEdgeFrom(*this, u, v, part, false) ||
+         (otherPartEdgeFrom(*this, u, v, part, true) && otherPartEdgeFrom(*this, v, u, part, true));
 }
 
 bool ModelContext::isCut(Index u, Index v) const {
