@@ -210,8 +210,13 @@ std::vector<Id> keptNeighbours(const FeModel& model, Id part, const std::vector<
 /// with all its seams fixed.
 std::string redoneReason(const RemeshedPart& before, const RemeshedPart& after, bool itself,
                          const std::vector<Id>& neighbours) {
-  if (itself)
-    return before.reason + "; again with every seam keeping its neighbours' nodes: " + after.reason;
+  const std::string again = "; again with every seam keeping its neighbours' nodes: ";
+  if (itself) {
+    const std::size_t last = before.reason.rfind(again);
+    if (last != std::string::npos && before.reason.substr(last + again.size()) == after.reason)
+      return before.reason;  // tried with all its seams fixed in an earlier round already
+    return before.reason + again + after.reason;
+  }
   if (before.status == PartStatus::Kept) return after.reason;
   std::string parts;
   for (const Id part : neighbours) parts += (parts.empty() ? "" : ", ") + std::to_string(part);
