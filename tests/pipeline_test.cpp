@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <set>
 #include <string>
 #include <unordered_map>
@@ -428,6 +429,72 @@ TEST(Pipeline, APartLostToAKeptNeighbourSaysItsFirstMeshPassed) {
                              "its first mesh passed, but not with its seams along "
                              "kept part 2 keeping their nodes: "))
       << plate.reason;
+}
+
+/// Per part, the IDs of the nodes its shells use on the plane x = `x`.
+std::map<Id, std::set<Id>> nodesOnPlaneX(const FeModel& model, double x) {
+  std::map<Id, std::set<Id>> onPlane;
+  const std::unordered_map<Id, std::size_t> index = model.nodeIndex();
+  for (const Shell& s : model.shells)
+    for (int c = 0; c < s.nodeCount; ++c) {
+      const Id n = s.nodes[std::size_t(c)];
+      if (std::abs(model.nodes[index.at(n)].xyz[0] - x) < 1e-6) onPlane[s.part].insert(n);
+    }
+  return onPlane;
+}
+
+TEST(Pipeline, ASmallerSizeOnOnePartReachesItsNeighboursSeamsOnly) {
+  // Four 24 x 24 plates of unit quads in a row along x (parts 1 to 4), sharing the columns
+  // x = 24, 48 and 72. Part 1 is asked for size 2, the others for 4. Part 2 places all its seams
+  // at 2, so part 3 places the same nodes on their seam (x = 48); the seam of parts 3 and 4
+  // (x = 72), which part 1 does not touch, keeps the size 4.
+  FeModel model;
+  const auto node = [](int i, int j) { return Id(1 + j * 97 + i); };
+  for (int j = 0; j <= 24; ++j)
+    for (int i = 0; i <= 96; ++i) test::addNode(model, node(i, j), i, j);
+  Id shell = 1;
+  for (int j = 0; j < 24; ++j)
+    for (int i = 0; i < 96; ++i)
+      test::addShell(model, shell++, Id(1 + i / 24),
+                     {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)});
+  RemeshSettings settings;
+  settings.targetSize = 4.0;
+  settings.partSizes = {{1, 2.0}};
+  const RemeshReport report = remeshDeck(model, settings);
+  ASSERT_EQ(report.parts.size(), 4u);
+  for (const RemeshedPart& part : report.parts)
+    ASSERT_NE(part.status, PartStatus::Kept) << part.plan.part << ": " << part.reason;
+  std::map<Id, std::set<Id>> seam = nodesOnPlaneX(model, 48.0);
+  EXPECT_EQ(seam[2], seam[3]);
+  EXPECT_EQ(seam[3].size(), 13u);  // 24 / 2 + 1
+  seam = nodesOnPlaneX(model, 72.0);
+  EXPECT_EQ(seam[3], seam[4]);
+  EXPECT_EQ(seam[4].size(), 7u);  // 24 / 4 + 1
+}
+
+TEST(Pipeline, APartThatFailsAtItsSizeIsTriedAtHalfWithItsNeighboursSeams) {
+  // car5.k at twice its size: part 4, a 393 mm wide plate, holds a hard point 131 mm from its
+  // edge, which its one row of elements 307 mm long cannot hold; its retries at a finer voxel
+  // keep the seams the deck gave it. Tried at half the size with its neighbours, whose seams with
+  // it then get nodes 154 mm apart, it passes, and so do parts 1 and 2, which were kept with it
+  // (part 6, the pole, stays kept: it loses 2.6 % of its area even at half the size).
+  VOXREMESH_REQUIRE_SHARED_DECK(path, "car5.k");
+  FeModel model = readDeck(path);
+  RemeshSettings settings;
+  settings.targetSize = 307.18;
+  const RemeshReport report = remeshDeck(model, settings);
+  ASSERT_EQ(report.parts.size(), 6u);
+  for (const RemeshedPart& part : report.parts) {
+    if (part.plan.part == 6) continue;
+    EXPECT_NE(part.status, PartStatus::Kept) << part.plan.part << ": " << part.reason;
+  }
+  const RemeshedPart& plate = report.parts[3];
+  ASSERT_EQ(plate.plan.part, 4);
+  EXPECT_EQ(plate.status, PartStatus::Retried);
+  EXPECT_NEAR(plate.plan.targetSize, 153.59, 0.01);
+  EXPECT_TRUE(test::contains(plate.reason, "at half the size")) << plate.reason;
+  for (const auto& [pair, before] : report.seamsBefore.sharedNodes)
+    EXPECT_GT(report.seamsAfter.sharedNodes.count(pair), 0u) << pair.first << "-" << pair.second;
 }
 
 /// A 60 x 60 plate of 3-unit quads in z = 0 (part 1) with a stiffener 9 tall of 3-unit quads

@@ -33,19 +33,20 @@ double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// A boundary point of one part's new mesh closer than this share of the target size to the inside
+/// of an edge of a neighbour's new mesh hangs on it: their seam is not conforming there.
+constexpr double kHangingShare = 0.005;
+
 /// Nodes of a part closer than this share of its target size are one node of its surface: a
 /// slit between them is no boundary a remesh could keep.
 constexpr double kCoincidentShare = 1e-3;
 
 /// For each plan, a model holding the part's shells plus the shells of other parts that share a
 /// node with it (so that buildSheets still finds the seams), and the nodes they use: sheets and
-/// volumes then cost what the part costs, not what the deck costs. `junctionSpacing` receives per
-/// plan the smallest target size among it and the planned parts it shares nodes with, so that
-/// both sides of a seam place the same nodes on it. A part's own coincident nodes are merged in
-/// its model (mergeCoincidentNodes, within kCoincidentShare of its target size); `mergedNodes`
-/// receives per plan how many.
+/// volumes then cost what the part costs, not what the deck costs. A part's own coincident nodes
+/// are merged in its model (mergeCoincidentNodes, within kCoincidentShare of its target size);
+/// `mergedNodes` receives per plan how many.
 std::vector<FeModel> partModels(const FeModel& deck, const std::vector<PartPlan>& plans,
-                                std::vector<double>& junctionSpacing,
                                 std::vector<std::size_t>& mergedNodes) {
   std::unordered_map<Id, std::size_t> planOf;
   for (std::size_t i = 0; i < plans.size(); ++i) planOf[plans[i].part] = i;
@@ -59,15 +60,6 @@ std::vector<FeModel> partModels(const FeModel& deck, const std::vector<PartPlan>
       std::vector<std::size_t>& list = plansOfNode[shell.nodes[static_cast<std::size_t>(c)]];
       if (std::find(list.begin(), list.end(), it->second) == list.end()) list.push_back(it->second);
     }
-  }
-  junctionSpacing.resize(plans.size());
-  for (std::size_t i = 0; i < plans.size(); ++i) junctionSpacing[i] = plans[i].targetSize;
-  for (const auto& [node, list] : plansOfNode) {
-    if (list.size() < 2) continue;
-    double smallest = junctionSpacing[list[0]];
-    for (const std::size_t plan : list) smallest = std::min(smallest, plans[plan].targetSize);
-    for (const std::size_t plan : list)
-      junctionSpacing[plan] = std::min(junctionSpacing[plan], smallest);
   }
   std::vector<FeModel> models(plans.size());
   std::vector<std::size_t> targets;
@@ -94,6 +86,22 @@ std::vector<FeModel> partModels(const FeModel& deck, const std::vector<PartPlan>
                                                     kCoincidentShare * plans[i].targetSize);
   }
   return models;
+}
+
+/// Per plan, the smallest target size among it and the planned parts whose shells its model holds
+/// (the parts it shares nodes with), so that both sides of a seam place the same nodes on it.
+std::vector<double> junctionSpacings(const std::vector<FeModel>& models,
+                                     const std::vector<PartPlan>& plans) {
+  std::unordered_map<Id, double> sizeOf;
+  for (const PartPlan& plan : plans) sizeOf[plan.part] = plan.targetSize;
+  std::vector<double> spacing(plans.size());
+  for (std::size_t i = 0; i < plans.size(); ++i) {
+    spacing[i] = plans[i].targetSize;
+    for (const Id other : shellPartIds(models[i]))
+      if (const auto it = sizeOf.find(other); it != sizeOf.end())
+        spacing[i] = std::min(spacing[i], it->second);
+  }
+  return spacing;
 }
 
 /// The index of each plan by its part.
@@ -196,6 +204,66 @@ std::vector<Id> otherParts(const FeModel& model, Id part) {
   return parts;
 }
 
+/// Whether plan i, kept in the first round, is tried again at half its size: its attempts failed
+/// the acceptance (it was not refused), retries are allowed, and a part it shares nodes with is
+/// remeshed too, so that the seams between them can get the closer nodes its own retries cannot
+/// give them.
+bool mayHalve(std::size_t i, const RemeshedPart& part, const std::vector<FeModel>& models,
+              const std::vector<PartPlan>& plans, const std::vector<std::uint8_t>& keptFromStart,
+              const RemeshSettings& settings) {
+  if (part.status != PartStatus::Kept || part.attempts == 0 || settings.retries < 1) return false;
+  const std::vector<Id> others = otherParts(models[i], plans[i].part);
+  for (std::size_t j = 0; j < plans.size(); ++j)
+    if (j != i && !keptFromStart[j] &&
+        std::binary_search(others.begin(), others.end(), plans[j].part))
+      return true;
+  return false;
+}
+
+/// A part tried again at half its size (mayHalve) says so: "retried" when it passed, with what the
+/// full size gave; both sizes' attempts when it was kept again.
+void describeHalved(RemeshedPart& part, const std::string& fullSizeReason) {
+  const std::string full = "at the full size: " + fullSizeReason;
+  if (part.status == PartStatus::Kept) {
+    part.reason = full + "; at half the size, its seams refined with it: " + part.reason;
+    return;
+  }
+  part.status = PartStatus::Retried;
+  part.reason = "at half the size, its seams refined with it (" + full + ")" +
+                (part.reason.empty() ? "" : "; " + part.reason);
+}
+
+/// Whether `after` keeps every part `before` accepted and accepts more.
+bool acceptsMore(const std::vector<RemeshedPart>& before, const std::vector<RemeshedPart>& after) {
+  std::size_t gained = 0;
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    const bool was = before[i].status != PartStatus::Kept, is = after[i].status != PartStatus::Kept;
+    if (was && !is) return false;
+    if (is && !was) ++gained;
+  }
+  return gained > 0;
+}
+
+/// Over the pairs of accepted parts that share nodes, the boundary points of one hanging on the
+/// other's boundary (hangingPoints, within kHangingShare of the smaller target size).
+std::size_t hangingSeamPoints(const std::vector<QuadMesh>& meshes,
+                              const std::vector<RemeshedPart>& parts,
+                              const std::vector<FeModel>& models,
+                              const std::vector<PartPlan>& plans) {
+  std::unordered_map<Id, std::size_t> planOf;
+  for (std::size_t i = 0; i < plans.size(); ++i) planOf[plans[i].part] = i;
+  std::size_t hanging = 0;
+  for (std::size_t i = 0; i < plans.size(); ++i) {
+    if (parts[i].status == PartStatus::Kept) continue;
+    for (const Id other : otherParts(models[i], plans[i].part)) {
+      const auto j = planOf.find(other);
+      if (j == planOf.end() || parts[j->second].status == PartStatus::Kept) continue;
+      const double size = std::min(plans[i].targetSize, plans[j->second].targetSize);
+      hanging += pipeline::hangingPoints(meshes[i], meshes[j->second], kHangingShare * size);
+    }
+  }
+  return hanging;
+}
 /// The parts of `fixed` (ascending IDs) whose shells are in `part`'s model: its kept neighbours.
 std::vector<Id> keptNeighbours(const FeModel& model, Id part, const std::vector<Id>& fixed) {
   std::vector<Id> result;
@@ -290,7 +358,7 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
     settings.sheets.sheetCuts =
         std::make_shared<const std::vector<std::array<Id, 2>>>(findSheetCuts(deck));
   RemeshReport report;
-  const std::vector<PartPlan> plans = planRemesh(deck, settings);
+  std::vector<PartPlan> plans = planRemesh(deck, settings);
   report.parts.resize(plans.size());
   std::vector<QuadMesh> meshes(plans.size());
   std::mutex progressMutex;
@@ -323,12 +391,21 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
                   " shells lie on faces of solid elements (remeshing would detach them)";
     tell("extract", plans[i].part, true);
   }
-  std::vector<double> junctionSpacing;
   std::vector<std::size_t> mergedNodes;
-  const std::vector<FeModel> models = partModels(deck, plans, junctionSpacing, mergedNodes);
+  const std::vector<FeModel> models = partModels(deck, plans, mergedNodes);
+  std::vector<double> junctionSpacing;
   std::unordered_map<Id, double> seamSpacing;
-  arena.execute(
-      [&] { seamSpacing = pipeline::seamNodeSpacing(models, plans, keptFromStart, settings); });
+  const auto updateSpacing = [&] {
+    junctionSpacing = junctionSpacings(models, plans);
+    arena.execute([&] {
+      seamSpacing =
+          pipeline::seamNodeSpacing(models, plans, junctionSpacing, keptFromStart, settings);
+    });
+  };
+  updateSpacing();
+  if (std::getenv("VXR_JS"))
+    for (std::size_t i = 0; i < plans.size(); ++i)
+      std::fprintf(stderr, "JS %lld %g\n", (long long)plans[i].part, junctionSpacing[i]);  // HACK
   // Parts whose seams keep their nodes: from the start those not planned (held shells too) and
   // those on solids, then every part kept in a round.
   std::vector<Id> fixed = unplannedParts(deck, plans);
@@ -342,26 +419,63 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
   std::sort(fixed.begin(), fixed.end());
   // Rounds: the parts to do are remeshed with the seams along fixed parts keeping their nodes (a
   // fixed part itself with all its seams fixed); the neighbours of a part kept in a round, and
-  // that part, are done again in the next.
+  // that part, are done again in the next. After the first round, when parts were kept that
+  // mayHalve allows, the first round is done again with those at half their size; its results
+  // stay when more parts pass so, none that passed is lost and no more seam points hang.
   const std::vector<std::unordered_set<Id>> hardPoints = partHardPoints(deck, plans);
-  for (bool first = true; !todo.empty(); first = false) {
+  RemeshSettings halvedSettings = settings;  // a halved part's retries stop at the same voxel
+  halvedSettings.retries = std::max(0, settings.retries - 1);
+  halvedSettings.finestVoxelShare = std::min(1.0, 2.0 * settings.finestVoxelShare);
+  std::vector<std::string> fullSizeReason(plans.size());  // non-empty: the plan is halved
+  // Remeshes the listed plans in parallel; `first`: in the first round.
+  const auto remeshAll = [&](const std::vector<std::size_t>& list, bool first, bool tellDone) {
     arena.execute([&] {
-      tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t t) {
-        const std::size_t i = todo[t];
+      tbb::parallel_for(std::size_t(0), list.size(), [&](std::size_t t) {
+        const std::size_t i = list[t];
         const bool isFixed = std::binary_search(fixed.begin(), fixed.end(), plans[i].part);
         const pipeline::PartSurroundings surroundings{
             junctionSpacing[i], isFixed ? otherParts(models[i], plans[i].part) : fixed,
             hardPoints[i], &seamSpacing};
-        RemeshedPart result =
-            pipeline::remeshPart(models[i], plans[i], settings, surroundings, meshes[i],
-                                 [&](const char* stage) { tell(stage, plans[i].part, false); });
-        if (!first && result.status == PartStatus::Kept)
+        const bool halved = !fullSizeReason[i].empty();
+        RemeshedPart result = pipeline::remeshPart(
+            models[i], plans[i], halved ? halvedSettings : settings, surroundings, meshes[i],
+            [&](const char* stage) { tell(stage, plans[i].part, false); });
+        if (halved && first)
+          describeHalved(result, fullSizeReason[i]);
+        else if (!first && result.status == PartStatus::Kept)
           result.reason = redoneReason(report.parts[i], result, isFixed,
                                        keptNeighbours(models[i], plans[i].part, fixed));
         report.parts[i] = std::move(result);
-        if (first) tell("extract", plans[i].part, true);
+        if (tellDone) tell("extract", plans[i].part, true);
       });
     });
+  };
+  for (bool first = true; !todo.empty(); first = false) {
+    remeshAll(todo, first, first);
+    bool anyHalvable = false;
+    for (const std::size_t i : todo)
+      if (first && mayHalve(i, report.parts[i], models, plans, keptFromStart, settings)) {
+        fullSizeReason[i] = report.parts[i].reason;
+        anyHalvable = true;
+      }
+    if (anyHalvable) {
+      const std::vector<RemeshedPart> fullParts = report.parts;
+      const std::vector<QuadMesh> fullMeshes = meshes;
+      const std::vector<PartPlan> fullPlans = plans;
+      for (std::size_t i = 0; i < plans.size(); ++i)
+        if (!fullSizeReason[i].empty()) plans[i].targetSize *= 0.5;
+      updateSpacing();
+      remeshAll(todo, true, false);
+      if (!acceptsMore(fullParts, report.parts) ||
+          hangingSeamPoints(meshes, report.parts, models, plans) >
+              hangingSeamPoints(fullMeshes, fullParts, models, fullPlans)) {
+        report.parts = fullParts;
+        meshes = fullMeshes;
+        plans = fullPlans;
+        updateSpacing();
+      }
+      fullSizeReason.assign(plans.size(), std::string());
+    }
     std::vector<Id> newlyKept;
     for (const std::size_t i : todo)
       if (report.parts[i].status == PartStatus::Kept &&

@@ -42,6 +42,7 @@ void lower(std::unordered_map<Id, double>& spacing, Id node, double value) {
 
 std::unordered_map<Id, double> seamNodeSpacing(const std::vector<FeModel>& models,
                                                const std::vector<PartPlan>& plans,
+                                               const std::vector<double>& junctionSpacing,
                                                const std::vector<std::uint8_t>& skip,
                                                const RemeshSettings& settings) {
   std::vector<std::unordered_map<Id, double>> perPlan(plans.size());
@@ -54,7 +55,8 @@ std::unordered_map<Id, double> seamNodeSpacing(const std::vector<FeModel>& model
       return;  // remeshPart builds them again and reports why they cannot be
     }
     for (const Sheet& sheet : sheets) {
-      const double spacing = sheetNodeSpacing(sheet, plans[i].targetSize, settings);
+      const double spacing =
+          std::min(sheetNodeSpacing(sheet, plans[i].targetSize, settings), junctionSpacing[i]);
       for (const Polyline& curve : sheet.junctionCurves)
         for (const PointIndex p : curve.points) lower(perPlan[i], sheet.pointNodeIds[p], spacing);
     }

@@ -24,14 +24,19 @@ double rowLength(const Sheet& sheet, const RemeshSettings& settings);
 /// length of the rows its boundary mesh gets.
 double sheetNodeSpacing(const Sheet& sheet, double targetSize, const RemeshSettings& settings);
 
-/// Per node on a junction curve of the planned parts' sheets, the smallest sheetNodeSpacing among
-/// the sheets through it (every part's sheets built from its model, at its plan's target size).
-/// @param models  per plan, the part's shells and its neighbours' (as remeshDeck builds them)
-/// @param skip    per plan, 1 for parts not remeshed (their seams keep their nodes anyway)
+/// Per node on a junction curve of the planned parts' sheets, the smallest spacing among the
+/// sheets through it: a sheet's sheetNodeSpacing at its plan's target size, or its part's junction
+/// spacing where that is less (the part places every seam of its at that spacing, so the part on
+/// the other side of each must too, also where that part's own junction spacing is larger).
+/// @param models          per plan, the part's shells and its neighbours' (as remeshDeck builds
+///                        them)
+/// @param junctionSpacing per plan, the spacing its junction curves get (PartSurroundings)
+/// @param skip            per plan, 1 for parts not remeshed (their seams keep their nodes anyway)
 /// A part whose sheets cannot be built adds nothing (its remesh reports why). Deterministic: the
 /// result does not depend on the order or thread count.
 std::unordered_map<Id, double> seamNodeSpacing(const std::vector<FeModel>& models,
                                                const std::vector<PartPlan>& plans,
+                                               const std::vector<double>& junctionSpacing,
                                                const std::vector<std::uint8_t>& skip,
                                                const RemeshSettings& settings);
 
