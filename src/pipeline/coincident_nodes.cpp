@@ -46,7 +46,7 @@ std::size_t mergeCoincidentNodes(FeModel& model, Id part, double tolerance) {
   const std::vector<Id> nodes = ownNodes(model, part);
   const std::unordered_map<Id, std::size_t> index = model.nodeIndex();
   using Cell = std::array<long long, 3>;
-  const double cell = std::max(tolerance, 1e-300);
+  const double cell = tolerance;
   const auto cellOf = [&](const std::array<double, 3>& p) {
     Cell c{};
     for (int k = 0; k < 3; ++k)

@@ -264,6 +264,7 @@ std::size_t hangingSeamPoints(const std::vector<QuadMesh>& meshes,
   }
   return hanging;
 }
+
 /// The parts of `fixed` (ascending IDs) whose shells are in `part`'s model: its kept neighbours.
 std::vector<Id> keptNeighbours(const FeModel& model, Id part, const std::vector<Id>& fixed) {
   std::vector<Id> result;
@@ -403,9 +404,6 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
     });
   };
   updateSpacing();
-  if (std::getenv("VXR_JS"))
-    for (std::size_t i = 0; i < plans.size(); ++i)
-      std::fprintf(stderr, "JS %lld %g\n", (long long)plans[i].part, junctionSpacing[i]);  // HACK
   // Parts whose seams keep their nodes: from the start those not planned (held shells too) and
   // those on solids, then every part kept in a round.
   std::vector<Id> fixed = unplannedParts(deck, plans);

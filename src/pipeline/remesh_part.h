@@ -42,7 +42,7 @@ PartAcceptance acceptPartMesh(const QuadMesh& mesh, const QuadMesh& original,
 /// a slit between doubled rows of nodes (a tube meshed round with its seam row doubled) is no
 /// boundary. Only nodes that no other shell of `model` uses take part: seams with other parts
 /// keep their nodes. Deterministic. Returns how many nodes the part no longer uses.
-/// Preconditions: the shells name nodes of the model; tolerance >= 0.
+/// Preconditions: the shells name nodes of the model; tolerance > 0.
 std::size_t mergeCoincidentNodes(FeModel& model, Id part, double tolerance);
 
 /// Boundary points of mesh `a` that lie inside a boundary edge of mesh `b` (closer to it than

@@ -1,10 +1,10 @@
 // hangingPoints: nodes one side of a seam has and the other lacks (remesh_part.h).
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <map>
 #include <vector>
 
+#include "geometry/vec3.h"
 #include "pipeline/remesh_part.h"
 
 namespace voxremesh::pipeline {
@@ -30,6 +30,7 @@ std::vector<std::array<CornerIndex, 2>> boundaryEdges(const QuadMesh& mesh) {
 }  // namespace
 
 std::size_t hangingPoints(const QuadMesh& a, const QuadMesh& b, double tolerance) {
+  using namespace geom;  // NOLINT: the vector operators
   const std::vector<std::array<CornerIndex, 2>> edgesA = boundaryEdges(a),
                                                 edgesB = boundaryEdges(b);
   std::vector<CornerIndex> points;
@@ -38,18 +39,13 @@ std::size_t hangingPoints(const QuadMesh& a, const QuadMesh& b, double tolerance
   points.erase(std::unique(points.begin(), points.end()), points.end());
   std::size_t hanging = 0;
   for (const CornerIndex p : points) {
-    const auto& x = a.points[p];
+    const Vec3& x = a.points[p];
     for (const auto& edge : edgesB) {
-      const auto &u = b.points[edge[0]], &v = b.points[edge[1]];
-      double uv = 0.0, ux = 0.0;
-      for (int k = 0; k < 3; ++k)
-        uv += (v[k] - u[k]) * (v[k] - u[k]), ux += (x[k] - u[k]) * (v[k] - u[k]);
-      if (!(uv > 0.0)) continue;
-      const double t = ux / uv, margin = tolerance / std::sqrt(uv);
-      if (t <= margin || t >= 1.0 - margin) continue;
-      double d = 0.0;
-      for (int k = 0; k < 3; ++k) d += std::pow(u[k] + t * (v[k] - u[k]) - x[k], 2);
-      if (d < tolerance * tolerance) {
+      const Vec3 &u = b.points[edge[0]], along = b.points[edge[1]] - u;
+      const double length = norm(along);
+      if (!(length > 0.0)) continue;
+      const double t = dot(x - u, along) / (length * length), margin = tolerance / length;
+      if (t > margin && t < 1.0 - margin && distance(u + along * t, x) < tolerance) {
         ++hanging;
         break;
       }

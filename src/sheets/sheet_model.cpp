@@ -14,10 +14,10 @@ namespace {
 /// from it with an edge at u: a seam whose two sides have different nodes along it.
 constexpr double kSeamDirectionDeg = 15.0;
 
-/// True when a shell of a part entry other than `part` has an edge from node u to v, or (`along`)
-/// an edge from u within kSeamDirectionDeg of the direction to v.
-bool otherPartEdgeFrom(const ModelContext& context, Index u, Index v, Index part, bool along) {
-  const auto& xyz = [&](Index n) { return context.model.nodes[n].xyz; };
+/// True when a shell of a part entry other than `part` has an edge from node u to v, or from u
+/// within kSeamDirectionDeg of the direction to v.
+bool otherPartEdgeTowards(const ModelContext& context, Index u, Index v, Index part) {
+  const auto xyz = [&](Index n) { return context.model.nodes[n].xyz; };
   const Vec3 towards{xyz(v)[0] - xyz(u)[0], xyz(v)[1] - xyz(u)[1], xyz(v)[2] - xyz(u)[2]};
   for (Index i = context.shellsBegin[u]; i < context.shellsBegin[u + 1]; ++i) {
     const Index s = context.shellsAt[i];
@@ -28,7 +28,7 @@ bool otherPartEdgeFrom(const ModelContext& context, Index u, Index v, Index part
       for (const Index w : {c.node[(k + 1) % c.count], c.node[(k + c.count - 1) % c.count]}) {
         if (w == v) return true;
         const Vec3 edge{xyz(w)[0] - xyz(u)[0], xyz(w)[1] - xyz(u)[1], xyz(w)[2] - xyz(u)[2]};
-        if (along && w != u && angleDeg(edge, towards) < kSeamDirectionDeg) return true;
+        if (w != u && angleDeg(edge, towards) < kSeamDirectionDeg) return true;
       }
     }
   }
@@ -41,8 +41,8 @@ bool ModelContext::sharedWithOtherPart(Index u, Index v, Index part) const {
   if (sharedBegin.empty() || sharedBegin[u] == sharedBegin[u + 1] ||
       sharedBegin[v] == sharedBegin[v + 1])
     return false;
-  return otherPartEdgeFrom(*this, u, v, part, false) ||
-         (otherPartEdgeFrom(*this, u, v, part, true) && otherPartEdgeFrom(*this, v, u, part, true));
+  // An edge u-v of another part is found from both ends.
+  return otherPartEdgeTowards(*this, u, v, part) && otherPartEdgeTowards(*this, v, u, part);
 }
 
 bool ModelContext::isCut(Index u, Index v) const {
