@@ -40,10 +40,10 @@ struct RemeshSettings {
   double targetSize = 0.0;
   /// Per-part target sizes that replace targetSize for those parts (only when asked for).
   std::map<Id, double> partSizes;
-  /// Finer-voxel retries of a part whose mesh misses the acceptance (each halves the voxel). One
-  /// by default: each halving quadruples the elements and halves the explicit time step, which a
-  /// crash model pays everywhere.
-  int retries = 1;
+  /// Finer-voxel retries of a part whose mesh misses the acceptance (each halves the voxel). Two
+  /// by default, which reach the finest voxel (finestVoxelShare): each halving quadruples the
+  /// part's elements and halves its explicit time step, so no retry goes below that floor.
+  int retries = 2;
   /// A sheet narrower than this many target sizes (its width 2 x area / boundary length) is meshed
   /// from its boundary with rows of quads along it (src/extract/narrow_sheet.h); where that
   /// cannot be done, it gets a voxel this much smaller than its width, so that the strip, flange

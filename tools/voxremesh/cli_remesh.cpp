@@ -61,7 +61,7 @@ const char* const kHelp =
     "  --retries N            finer retries of a part that misses the acceptance (half the voxel\n"
     "                         and the spacing of boundary-meshed sheets; with 1 or more, a part\n"
     "                         kept with neighbours being remeshed is tried at half its size with\n"
-    "                         them, its seams refined too), 0..8 (1)\n"
+    "                         them, its seams refined too), 0..8 (2: down to 1/4 of the size)\n"
     "  --parts P1,P2,...      the parts to remesh (default: all parts with shells)\n"
     "  --feature-angle DEG    edges turning more than DEG are feature lines (default 45)\n"
     "  --threads N            threads, 0..4096 (default and 0: all cores)\n"
