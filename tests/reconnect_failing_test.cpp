@@ -1,6 +1,7 @@
 // reconnectFailingFaces on flat grids with planted connectivity defects that no point move can
 // repair: a pair of quads cut along the wrong diagonal, a split point (a thin quad between two
-// valence-3 points) and a doubled point (two sliver triangles between its copies). The step
+// valence-3 points), a doubled point (two sliver triangles between its copies) and a point of
+// three quads with a straight corner. The step
 // removes the failures, keeps the surface (every point on the plane, the fixed boundary where it
 // was), the Euler characteristic and the orientation, and gives the same mesh for one and two
 // threads.
@@ -125,6 +126,47 @@ QuadMesh doubledPoint() {
   mesh.faces.push_back({id(2, 3), low, high, voxremesh::kNoCorner});
   mesh.faces.push_back({low, id(4, 3), high, voxremesh::kNoCorner});
   return mesh;
+}
+
+/// Two unit squares of a 4 x 4 grid, (1..3) x (1..2), replaced by three quads round a point
+/// added at (2, 1.5): the quad over it has a straight (180 degree) corner at (2, 2). Every other
+/// point is fixed.
+QuadMesh threeQuadsRoundAPoint() {
+  QuadMesh mesh = voxremesh::test::unitGrid(4);
+  auto id = [](int i, int j) { return CornerIndex(j * 5 + i); };
+  for (auto& constraint : mesh.constraints) constraint = {PointRole::Corner, voxremesh::kNoCurve};
+  const CornerIndex v = CornerIndex(mesh.points.size());
+  mesh.points.push_back({2.0, 1.5, 0.0});
+  mesh.constraints.push_back({});
+  mesh.faces.erase(
+      std::remove_if(mesh.faces.begin(), mesh.faces.end(),
+                     [&](const auto& face) { return face[0] == id(1, 1) || face[0] == id(2, 1); }),
+      mesh.faces.end());
+  mesh.faces.push_back({v, id(1, 2), id(1, 1), id(2, 1)});
+  mesh.faces.push_back({v, id(2, 1), id(3, 1), id(3, 2)});
+  mesh.faces.push_back({v, id(3, 2), id(2, 2), id(1, 2)});
+  return mesh;
+}
+
+TEST(ReconnectFailingFaces, TakesOutAPointOfThreeQuadsWhoseCornersCannotPass) {
+  const QuadMesh start = threeQuadsRoundAPoint();
+  ASSERT_TRUE(eulerAndOriented(start).second);
+  ASSERT_GT(failing(start), 0u);
+  const ReferenceSurface plane(voxremesh::test::unitGrid(4));
+  // No position of the one free point mends the straight corner, nor does an edge rotation (the
+  // point would keep two faces): the hexagon of the three quads cut into two does.
+  QuadMesh moved = start;
+  voxremesh::improveFailingElements(moved, plane, unitCriteria(), 5);
+  ASSERT_GT(failing(moved), 0u);
+  QuadMesh mesh = start;
+  EXPECT_EQ(voxremesh::reconnectFailingFaces(mesh, plane, unitCriteria()), 1u);
+  EXPECT_EQ(failing(mesh), 0u);
+  // The grid again: the point gone, two unit squares in place of the three quads.
+  EXPECT_EQ(mesh.faces.size(), 16u);
+  EXPECT_EQ(mesh.points.size(), 25u);
+  EXPECT_EQ(eulerAndOriented(mesh), eulerAndOriented(start));
+  EXPECT_EQ(voxremesh::test::foldedCount(mesh), 0u);
+  expectOnThePlaneWithTheBoundaryKept(mesh, start);
 }
 
 TEST(ReconnectFailingFaces, CollapsesTheShortSideOfSliverTriangles) {

@@ -252,7 +252,10 @@ std::size_t splitFailingQuads(QuadMesh& mesh, const QualitySettings& settings,
 /// `settings`), in index order, its neighbourhood (the faces round the points of the faces round
 /// its corners) is tried as it is and after each change of connectivity at the face: every other
 /// cut of the polygon it makes with a neighbour across one of its edges (as rotateFailingEdges,
-/// under the same rules), for a quad the collapse of either diagonal and, for a face failing the
+/// under the same rules), the removal of an inner corner that exactly three quads share (their
+/// hexagon cut into two quads along each of its diagonals: the corner an uneven count of rows
+/// leaves, which can split a right-angled corner of the outline in two), for a quad the collapse
+/// of either diagonal and, for a face failing the
 /// minimum length or with a degenerate corner, the collapse of each of its edges (a quad along the
 /// edge becomes a triangle, a triangle along it goes), both under the constraint and manifold
 /// rules of the rhombic collapse. Each try is followed by one round of the pattern

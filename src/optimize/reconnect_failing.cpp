@@ -194,6 +194,36 @@ void searchTrial(Trial& trial, const ReferenceSurface& original, const QualitySe
   trial.score = scoreOf(trial.mesh, settings);
 }
 
+/// The hexagon the three quads round inner point v make, oriented like them (v's ring: each
+/// quad's corner after v, its opposite corner, and so on); empty unless v is an inner point of
+/// exactly three quads.
+std::vector<CornerIndex> hexagonAround(const QuadMesh& mesh, const opt::Topology& t,
+                                       CornerIndex v) {
+  if (t.boundary[v] || t.faceCount(v) != 3u) return {};
+  struct Wedge {
+    CornerIndex next, opposite, previous;
+  };
+  std::vector<Wedge> wedges;
+  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f) {
+    const Face& face = mesh.faces[*f];
+    if (cornerCount(face) != 4) return {};
+    const auto k = std::size_t(std::find(face.begin(), face.end(), v) - face.begin());
+    wedges.push_back({face[(k + 1) % 4], face[(k + 2) % 4], face[(k + 3) % 4]});
+  }
+  std::vector<CornerIndex> hexagon{wedges[0].next, wedges[0].opposite, wedges[0].previous};
+  for (int step = 0; step < 2; ++step) {
+    const auto w = std::find_if(wedges.begin(), wedges.end(),
+                                [&](const Wedge& x) { return x.next == hexagon.back(); });
+    if (w == wedges.end()) return {};
+    hexagon.push_back(w->opposite);
+    if (step == 0) hexagon.push_back(w->previous);
+  }
+  std::vector<CornerIndex> sorted = hexagon;
+  sortUnique(sorted);
+  if (sorted.size() != 6) return {};
+  return hexagon;
+}
+
 /// The edits tried at face f: every other cut of the polygon it makes with a neighbour across
 /// each of its edges (as rotateFailingEdges), the collapse of each diagonal of a quad and, when
 /// `collapseEdges`, of each of its edges.
@@ -225,6 +255,20 @@ std::vector<Edit> editsAt(const QuadMesh& mesh, const opt::Topology& t, std::uin
       if (t.edgeFaces(p, q) > 0 || (!isFree(p) && !isFree(q))) continue;
       const std::array<Face, 2> cut = opt::cutPolygon(polygon, i);
       edits.push_back(Edit{{std::min(f, g), std::max(f, g)}, {cut[0], cut[1]}, std::nullopt});
+    }
+  }
+  // An inner corner of three quads taken out, their hexagon cut into two quads along each of its
+  // diagonals: the three-quad corner an uneven count of rows leaves, moved away from the face.
+  for (int k = 0; k < n; ++k) {
+    const CornerIndex v = face[std::size_t(k)];
+    if (!isFree(v)) continue;
+    const std::vector<CornerIndex> hexagon = hexagonAround(mesh, t, v);
+    if (hexagon.empty()) continue;
+    std::vector<std::uint32_t> removed(t.facesBegin(v), t.facesEnd(v));
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (t.edgeFaces(hexagon[i], hexagon[i + 3]) > 0) continue;
+      const std::array<Face, 2> cut = opt::cutPolygon(hexagon, i);
+      edits.push_back(Edit{removed, {cut[0], cut[1]}, std::nullopt});
     }
   }
   // A face with a sliver corner or a short side: each of its edges collapsed (both ends made one
