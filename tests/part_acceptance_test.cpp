@@ -40,6 +40,39 @@ TEST(PartAcceptance, TheOriginalItselfPasses) {
   EXPECT_NEAR(a.distance, 0.0, 1e-12);
 }
 
+/// An 8 x 8 unit grid with a fin of 4 x 1 unit quads standing on its line y = 4 from x = 2 to 6
+/// (z = 0..1); with `attached` false the fin has nodes of its own on that line between its ends
+/// (where the grid has nodes too, unshared): it touches the grid at its two ends only.
+QuadMesh gridWithFin(bool attached) {
+  QuadMesh mesh = test::unitGrid(8);
+  const auto base = CornerIndex(mesh.points.size());
+  for (int i = 2; i <= 6; ++i) mesh.points.push_back({double(i), 4.0, 1.0});
+  for (int i = 2; i <= 6; ++i) mesh.points.push_back({double(i), 4.0, 0.0});
+  auto foot = [&](int i) {
+    const bool shared = attached || i == 2 || i == 6;
+    return shared ? test::gridPoint(8, i, 4) : CornerIndex(base + 5 + CornerIndex(i - 2));
+  };
+  for (int i = 2; i < 6; ++i)
+    mesh.faces.push_back({foot(i), foot(i + 1), CornerIndex(base + CornerIndex(i - 1)),
+                          CornerIndex(base + CornerIndex(i - 2))});
+  mesh.constraints.assign(mesh.points.size(), {});
+  return mesh;
+}
+
+TEST(PartAcceptance, AFinComeApartFromItsSheetFails) {
+  // Same shapes, the same components (the fin touches its plate) and loops: only the T-junction
+  // line the fin and the plate shared is gone.
+  const QuadMesh original = gridWithFin(true);
+  const PartAcceptance kept = accept(original, original);
+  EXPECT_TRUE(kept.accepted) << kept.reason;
+  EXPECT_NEAR(kept.junctionLength, 4.0, 1e-12);
+  EXPECT_EQ(kept.junctionLengthLost, 0.0);
+  const PartAcceptance apart = accept(gridWithFin(false), original);
+  EXPECT_FALSE(apart.accepted);
+  EXPECT_NEAR(apart.junctionLengthLost, 4.0, 1e-12);
+  EXPECT_TRUE(says(apart, "its sheets come apart along 4 of the 4")) << apart.reason;
+}
+
 TEST(PartAcceptance, APlantedFoldFails) {
   // Point (4, 4) pulled across its diagonal neighbour (5, 5): the face between them turns over
   // while it stays in the plane (no distance, no topology change).

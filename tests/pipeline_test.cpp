@@ -583,17 +583,17 @@ TEST(Pipeline, AStiffenerFromThePlatesEdgeSplitsThePlateAndKeepsItsSeam) {
   }
 }
 
-TEST(Pipeline, AFinOfThePlatesOwnPartEndingInsideItIsKeptWithItsJunction) {
-  // The same stiffener as a fin of the plate's own part: the plate's two faces on the line are
-  // joined across it (one sheet) and the fin's junction curve runs from the plate's edge into
-  // it, where the plate's volume mesh has no nodes for it: the fin would come loose. The part
-  // is kept with the reason, its 10 T-junction edges intact (never reported remeshed with the
-  // fin torn off).
+TEST(Pipeline, AFinOfThePlatesOwnPartEndingInsideItIsRemeshedOnItsLine) {
+  // The same stiffener as a fin of the plate's own part, from the plate's edge to its middle:
+  // its line is extended to the far edge, the plate's halves are two sheets meeting on it, and
+  // the fin's 10 T-junction edges along x = 0..30 stay edges of the plate and the fin (before,
+  // the plate was one sheet whose volume mesh had no nodes on the line, and the fin came loose).
   FeModel model = plateWithStiffener(0, 10, 1);
   const RemeshReport report = remeshDeck(model, RemeshSettings{});
   ASSERT_EQ(report.parts.size(), 1u);
-  EXPECT_EQ(report.parts[0].status, PartStatus::Kept);
-  EXPECT_FALSE(report.parts[0].reason.empty());
+  EXPECT_NE(report.parts[0].status, PartStatus::Kept) << report.parts[0].reason;
+  EXPECT_NEAR(report.parts[0].acceptance.junctionLength, 30.0, 1e-9);
+  EXPECT_EQ(report.parts[0].acceptance.junctionLengthLost, 0.0);
   EXPECT_EQ(deckSeams(model).tJunctionEdges, 10u);
 }
 

@@ -459,9 +459,10 @@ TEST(Sheets, TJunctionGivesThreeSheetsSharingAJunctionCurve) {
   }
 }
 
-TEST(Sheets, PlateHalvesJoinedAroundAFinStayOneSheet) {
-  // A 6 x 4 plate with a fin standing on y = 2 from x = 0 to 3: the plate's halves are joined
-  // beyond the fin, so the plate is one sheet and the fin's line lies inside it.
+TEST(Sheets, APlateIsCutAlongAFinOfItsOwnOnToItsFarEdge) {
+  // A 6 x 4 plate with a fin standing on y = 2 from x = 0 to 3: the fin's line ends inside the
+  // plate, so it is extended along y = 2 to x = 6 and the plate's halves are two sheets, each
+  // with the whole line (the fin's nodes and the extension's) on its junction curves.
   FeModel m;
   m.partOrAdd(1, "plate and fin");
   addSheet(m, 1, 1, 6, 4, [](int i, int j) { return Vec3{double(i), double(j), 0.0}; });
@@ -474,24 +475,22 @@ TEST(Sheets, PlateHalvesJoinedAroundAFinStayOneSheet) {
       addShell(m, nextShellId(m), 1,
                {finNode(i, j), finNode(i + 1, j), finNode(i + 1, j + 1), finNode(i, j + 1)});
   const std::vector<Sheet> sheets = buildSheets(m, 1);
-  ASSERT_EQ(sheets.size(), 2u);
+  ASSERT_EQ(sheets.size(), 3u);
   expectValidSheets(m, sheets);
-  const Sheet& plate = sheets[0];
-  EXPECT_EQ(plate.faces.size(), 24u);
-  EXPECT_EQ(plate.points.size(), 35u);  // no node split
-  ASSERT_EQ(plate.boundaryLoops.size(), 1u);
-  EXPECT_EQ(plate.boundaryLoops[0].points.size(), 20u);  // the outline only
-  ASSERT_EQ(plate.junctionCurves.size(), 1u);
-  expectSameLine(nodeIds(plate, plate.junctionCurves[0]),
-                 {plateNode(0, 2), plateNode(1, 2), plateNode(2, 2), plateNode(3, 2)});
-  const Sheet& fin = sheets[1];
-  EXPECT_EQ(fin.faces.size(), 6u);
-  ASSERT_EQ(fin.junctionCurves.size(), 1u);
-  expectSameLine(nodeIds(fin, fin.junctionCurves[0]),
-                 {plateNode(0, 2), plateNode(1, 2), plateNode(2, 2), plateNode(3, 2)});
-  // The fin stands at 90 degrees, but a feature line needs an inner edge with two faces of one
-  // sheet: the plate is flat there.
-  EXPECT_TRUE(plate.featureLines.empty());
+  std::vector<Id> line;
+  for (int i = 0; i <= 6; ++i) line.push_back(plateNode(i, 2));
+  std::size_t halves = 0;
+  for (const Sheet& sheet : sheets) {
+    if (sheet.faces.size() == 6u) continue;  // the fin
+    EXPECT_EQ(sheet.faces.size(), 12u);
+    ++halves;
+    std::set<Id> onCurves;
+    for (const Polyline& curve : sheet.junctionCurves)
+      for (const Id id : nodeIds(sheet, curve)) onCurves.insert(id);
+    EXPECT_EQ(onCurves, std::set<Id>(line.begin(), line.end()));
+    EXPECT_TRUE(sheet.featureLines.empty());
+  }
+  EXPECT_EQ(halves, 2u);
 }
 
 TEST(Sheets, TwistedStripClosingAtAFinIsCutThere) {
@@ -963,6 +962,22 @@ TEST(Sheets, ASeamThroughAPlateCutsItAndAnEndInsideItIsExtendedToTheEdge) {
   const FeModel inner = plateWithWeb(2, 5);
   EXPECT_EQ(buildSheets(inner, 1).size(), 2u);
   EXPECT_EQ(findSheetCuts(inner).size(), 8u);
+}
+
+TEST(Sheets, AFinOfThePartItselfEndingInsideAPlateIsExtendedToItsEdges) {
+  // The web of x = 2..5 as shells of the plate's own part: its line, a T-junction of the part,
+  // ends inside the plate at both ends and is extended to both edges, so that the plate's two
+  // sheets carry the line's nodes as the fin does (one sheet around a line ending inside it is
+  // meshed without them: the fin's nodes then lie on the plate's faces).
+  FeModel m = plateWithWeb(2, 5);
+  for (Shell& shell : m.shells) shell.part = 1;
+  expectValidSheets(m, buildAllSheets(m));
+  const std::vector<Sheet> sheets = buildSheets(m, 1);
+  ASSERT_EQ(sheets.size(), 3u);
+  std::vector<std::size_t> faces;
+  for (const Sheet& sheet : sheets) faces.push_back(sheet.faces.size());
+  std::sort(faces.begin(), faces.end());
+  EXPECT_EQ(faces, (std::vector<std::size_t>{3, 24, 24}));
 }
 
 TEST(Sheets, JunctionCurvesEndWhereTheSeamChangesItsPartner) {

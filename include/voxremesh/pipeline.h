@@ -170,6 +170,9 @@ struct PartAcceptance {
   std::size_t componentsBefore = 0, componentsAfter = 0;
   std::size_t loopsBefore = 0, loopsAfter = 0;
   double areaBefore = 0.0, areaAfter = 0.0;  ///< of the part's shells: its mass at one thickness
+  /// Length of the original's T-junctions (edges three or more shells share: a fin on a sheet),
+  /// and of those the new mesh no longer has (no T-junction edge within the distance limit).
+  double junctionLength = 0.0, junctionLengthLost = 0.0;
 };
 
 /// What remeshDeck did to one part.

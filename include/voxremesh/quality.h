@@ -69,6 +69,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "voxremesh/quad_mesh.h"
@@ -229,6 +230,11 @@ struct TopologyCounts {
 /// Counts the components and boundary loops of a mesh (see TopologyCounts). Preconditions: faces
 /// name existing points.
 TopologyCounts topologyCounts(const QuadMesh& mesh);
+
+/// The edges of a mesh that three or more faces share (where a fin or a flange stands on a sheet:
+/// T-junctions), each as its two point indices, lower first, in ascending order. Preconditions:
+/// faces name existing points.
+std::vector<std::pair<CornerIndex, CornerIndex>> junctionEdges(const QuadMesh& mesh);
 
 /// The curves that bound the channels of a surface for the minimum-length criterion (see the top of
 /// the file): every sheet's boundary loops, feature lines and junction curves, in world

@@ -26,7 +26,10 @@
 //   Where such a seam ends inside the part, away from its boundary and from other curves, it is
 //   extended along the part's edges, each turning less than 45 degrees from the seam's last
 //   edge, to the first node on the boundary, another curve or a fold cut; an end that reaches
-//   none is not extended.
+//   none is not extended. The part's own T-junctions (a fin of the part standing on a line of
+//   its panel) are extended the same way where they end inside the panel (the fin's free edge
+//   being the only other curve there): the panel's volume mesh has nodes only on its sheets'
+//   boundaries, so a line ending inside one sheet would get none and the fin would come loose.
 // - Cuts. Fold cuts, seams inside a sheet and their extensions are the part's cuts. findSheetCuts
 // finds them on a whole
 //   deck; SheetSettings::sheetCuts hands them to buildSheets on a piece of it, so that both parts

@@ -1,5 +1,6 @@
 // The acceptance of a part's new mesh, and the fold check against the sheet it came from
 // (remesh_part.h).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -45,6 +46,35 @@ double meshArea(const QuadMesh& mesh) {
   return area;
 }
 
+/// The distance from point p to the segment from a to b.
+double distanceToSegment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 d = b - a;
+  const double length2 = dot(d, d);
+  const double t = length2 > 0.0 ? std::clamp(dot(p - a, d) / length2, 0.0, 1.0) : 0.0;
+  return norm(a + d * t - p);
+}
+
+/// The length of the T-junction edges of `original` (junctionEdges) whose midpoints are farther
+/// than `tolerance` from every T-junction edge of `mesh`: where sheets that met no longer share
+/// an edge (a fin whose nodes lie on its sheet's faces instead of being its nodes).
+double lostJunctionLength(const QuadMesh& original, const QuadMesh& mesh, double tolerance,
+                          double& total) {
+  const auto before = junctionEdges(original), after = junctionEdges(mesh);
+  double lost = 0.0;
+  total = 0.0;
+  for (const auto& [a, b] : before) {
+    const Vec3 &p = original.points[a], &q = original.points[b];
+    const Vec3 middle = (p + q) * 0.5;
+    total += distance(p, q);
+    const bool kept = std::any_of(after.begin(), after.end(), [&](const auto& edge) {
+      return distanceToSegment(middle, mesh.points[edge.first], mesh.points[edge.second]) <=
+             tolerance;
+    });
+    if (!kept) lost += distance(p, q);
+  }
+  return lost;
+}
+
 /// The first failed check of an acceptance, in words (empty when all pass).
 std::string failedCheck(const PartAcceptance& a, const QualitySettings& settings) {
   if (a.componentsAfter != a.componentsBefore)
@@ -53,6 +83,10 @@ std::string failedCheck(const PartAcceptance& a, const QualitySettings& settings
   if (a.loopsAfter != a.loopsBefore)
     return std::to_string(a.loopsAfter) + " boundary loops instead of " +
            std::to_string(a.loopsBefore);
+  if (a.junctionLengthLost > 0.0)
+    return "its sheets come apart along " + formatNumber(a.junctionLengthLost) + " of the " +
+           formatNumber(a.junctionLength) +
+           " where three or more of its shells met (a fin or flange on a sheet)";
   if (a.distance > a.distanceLimit)
     return "distance to the original " + formatNumber(a.distance) + " over its limit " +
            formatNumber(a.distanceLimit);
@@ -148,6 +182,7 @@ PartAcceptance acceptPartMesh(const QuadMesh& mesh, const QuadMesh& original,
   a.componentsAfter = after.components;
   a.loopsBefore = before.boundaryLoops;
   a.loopsAfter = after.boundaryLoops;
+  a.junctionLengthLost = lostJunctionLength(original, mesh, a.distanceLimit, a.junctionLength);
   a.areaBefore = meshArea(original);
   a.areaAfter = meshArea(mesh);
   a.reason = failedCheck(a, judged);

@@ -532,16 +532,19 @@ std::string remeshReportJson(const RemeshReport& report) {
                   a.degenerateCorners, a.componentsBefore, a.componentsAfter, a.loopsBefore,
                   a.loopsAfter);
     out += buffer;
-    const std::pair<const char*, double> numbers[] = {{"target_size", part.plan.targetSize},
-                                                      {"voxel_size", part.voxelSize},
-                                                      {"failing_share", a.failingShare},
-                                                      {"distance", a.distance},
-                                                      {"distance_limit", a.distanceLimit},
-                                                      {"area_before", a.areaBefore},
-                                                      {"area_after", a.areaAfter},
-                                                      {"volume_seconds", part.volumeSeconds},
-                                                      {"extract_seconds", part.extractSeconds},
-                                                      {"optimize_seconds", part.optimizeSeconds}};
+    const std::pair<const char*, double> numbers[] = {
+        {"target_size", part.plan.targetSize},
+        {"voxel_size", part.voxelSize},
+        {"failing_share", a.failingShare},
+        {"distance", a.distance},
+        {"distance_limit", a.distanceLimit},
+        {"area_before", a.areaBefore},
+        {"area_after", a.areaAfter},
+        {"junction_length", a.junctionLength},
+        {"junction_length_lost", a.junctionLengthLost},
+        {"volume_seconds", part.volumeSeconds},
+        {"extract_seconds", part.extractSeconds},
+        {"optimize_seconds", part.optimizeSeconds}};
     for (const auto& [key, value] : numbers) {
       out += std::string(", \"") + key + "\": ";
       if (std::isfinite(value))

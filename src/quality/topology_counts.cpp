@@ -1,4 +1,5 @@
-// topologyCounts: components and boundary loops of a mesh (quality.h).
+// topologyCounts: components and boundary loops of a mesh; junctionEdges: its T-junctions
+// (quality.h).
 #include <algorithm>
 #include <numeric>
 #include <utility>
@@ -36,6 +37,26 @@ std::size_t setsAmong(DisjointSets& sets, const std::vector<bool>& flagged) {
 }
 
 }  // namespace
+
+std::vector<std::pair<CornerIndex, CornerIndex>> junctionEdges(const QuadMesh& mesh) {
+  std::vector<std::pair<CornerIndex, CornerIndex>> edges;
+  for (const auto& face : mesh.faces) {
+    const int corners = cornerCount(face);
+    for (int k = 0; k < corners; ++k) {
+      const CornerIndex a = face[std::size_t(k)], b = face[std::size_t((k + 1) % corners)];
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::pair<CornerIndex, CornerIndex>> shared;
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i >= 3) shared.push_back(edges[i]);
+    i = j;
+  }
+  return shared;
+}
 
 TopologyCounts topologyCounts(const QuadMesh& mesh) {
   const std::size_t n = mesh.points.size();

@@ -62,8 +62,13 @@ std::vector<std::array<Index, 2>> partInnerSeamCuts(const ModelContext& context,
                                                     const PartMesh& part,
                                                     const std::vector<std::array<Index, 2>>& cuts) {
   const ShellEdges& edges = part.edges;
+  // The lines extended: inner seams, and the part's own T-junctions (a fin standing on a line of
+  // the panel that ends inside it).
+  auto extendedLine = [&](Index e) {
+    return edges.isNonManifold(e) || innerSeam(context, part, e);
+  };
   bool anySeam = false;
-  for (Index e = 0; e < edges.edgeCount() && !anySeam; ++e) anySeam = innerSeam(context, part, e);
+  for (Index e = 0; e < edges.edgeCount() && !anySeam; ++e) anySeam = extendedLine(e);
   if (!anySeam) return {};
   const std::size_t nodeCount = part.nodes.size();
   std::vector<std::vector<Index>> edgesAt(nodeCount);
@@ -79,9 +84,10 @@ std::vector<std::array<Index, 2>> partInnerSeamCuts(const ModelContext& context,
   for (Index e = 0; e < edges.edgeCount(); ++e) {
     if (!curve[e]) continue;
     onCurve[edges.edge(e).a] = onCurve[edges.edge(e).b] = 1;
-    if (!innerSeam(context, part, e)) continue;
+    if (!extendedLine(e)) continue;
     ++seamCount[edges.edge(e).a];
     ++seamCount[edges.edge(e).b];
+    if (!innerSeam(context, part, e)) continue;  // a T-junction parts the sheets already
     const Index a = part.nodes[edges.edge(e).a], b = part.nodes[edges.edge(e).b];
     result.push_back({std::min(a, b), std::max(a, b)});
   }
@@ -91,16 +97,23 @@ std::vector<std::array<Index, 2>> partInnerSeamCuts(const ModelContext& context,
   std::vector<Index> path;
   std::vector<std::uint8_t> visited(nodeCount, 0);
   for (Index v = 0; v < nodeCount; ++v) {
-    // A seam's end inside the part: one inner seam edge, no other curve through the node.
+    // A line's end inside the part: one such edge, no other curve through the node but, for a
+    // T-junction, the fin's own free edge.
     if (seamCount[v] != 1) continue;
-    bool dangling = true;
+    bool dangling = true, finEdge = false;
     Index from = kNoIndex;
     for (const Index e : edgesAt[v]) {
       if (!curve[e]) continue;
-      if (innerSeam(context, part, e))
+      if (extendedLine(e)) {
         from = other(e, v);
-      else
-        dangling = false;
+        finEdge = edges.isNonManifold(e);
+      }
+    }
+    int freeEdges = 0;
+    for (const Index e : edgesAt[v]) {
+      if (!curve[e] || extendedLine(e)) continue;
+      if (finEdge && edges.isBoundary(e) && freeEdges++ == 0) continue;
+      dangling = false;
     }
     if (!dangling) continue;
     const Vec3 direction = minus(position(context, part, v), position(context, part, from));
