@@ -7,6 +7,7 @@
 #include <new>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "extract/narrow_sheet.h"
@@ -318,31 +319,83 @@ std::vector<SheetPlan> boundaryPlans(const std::vector<Sheet>& sheets,
   return result;
 }
 
+/// Per sheet, per junction curve, 1 for a curve inside the part: between its own sheets only
+/// (a fold cut, a fin of its own), none of its inner points and not both of its ends a node
+/// of another part's shells in `model`. Such a curve's nodes are the part's own concern, and its
+/// retries may place them closer.
+std::vector<std::vector<std::uint8_t>> curvesInsidePart(const std::vector<Sheet>& sheets,
+                                                        const FeModel& model, Id part) {
+  std::unordered_set<Id> others;
+  for (const Shell& shell : model.shells)
+    if (shell.part != part)
+      for (int c = 0; c < shell.nodeCount; ++c) others.insert(shell.nodes[std::size_t(c)]);
+  std::vector<std::vector<std::uint8_t>> inside(sheets.size());
+  for (std::size_t k = 0; k < sheets.size(); ++k)
+    for (const Polyline& curve : sheets[k].junctionCurves) {
+      auto shared = [&](std::size_t i) {
+        return others.count(sheets[k].pointNodeIds[curve.points[i]]) > 0;
+      };
+      const std::size_t n = curve.points.size();
+      bool seam = !curve.closed && n >= 2 && shared(0) && shared(n - 1);
+      for (std::size_t i = curve.closed ? 0 : 1; i + (curve.closed ? 0 : 1) < n && !seam; ++i)
+        seam = shared(i);
+      inside[k].push_back(seam || curve.keepPoints ? 0 : 1);
+    }
+  return inside;
+}
+
+/// Halves the node spacing of the curves `inside` flags (curvesInsidePart; a curve without a
+/// spacing of its own has `junctionSpacing`), down to `finest`. Every copy of a curve (one per
+/// sheet along it) gets the same value. Returns per sheet whether one of its curves changed.
+std::vector<std::uint8_t> halveInsideCurves(std::vector<Sheet>& sheets,
+                                            const std::vector<std::vector<std::uint8_t>>& inside,
+                                            double junctionSpacing, double finest) {
+  std::vector<std::uint8_t> changed(sheets.size(), 0);
+  for (std::size_t k = 0; k < sheets.size(); ++k)
+    for (std::size_t c = 0; c < sheets[k].junctionCurves.size(); ++c) {
+      if (!inside[k][c]) continue;
+      Polyline& curve = sheets[k].junctionCurves[c];
+      const double now = curve.nodeSpacing > 0.0 ? curve.nodeSpacing : junctionSpacing;
+      const double half = std::max(finest, now / 2);
+      if (half >= now * (1 - 1e-9)) continue;
+      curve.nodeSpacing = half;
+      changed[k] = 1;
+    }
+  return changed;
+}
+
 /// The plans of a finer attempt: every sheet at half its size where that stays at `finest` or
 /// above, a volume at half the voxel, a boundary-meshed sheet meshed again with nodes half as far
-/// apart along its free stretches (as it was where that is refused). False when no sheet got
-/// finer.
+/// apart along its free stretches (as it was where that is refused), and meshed again at its size
+/// where `curvesChanged` flags it (halveInsideCurves). False when no sheet got finer. Throws
+/// extract::NarrowSheetRefusal when a flagged sheet cannot be meshed from its boundary.
 bool halveSheetSizes(std::vector<SheetPlan>& plans, const std::vector<Sheet>& sheets,
                      const SheetHardPoints& hardPoints, const PartPlan& plan,
-                     const RemeshSettings& settings, double junctionSpacing, double finest) {
+                     const RemeshSettings& settings, double junctionSpacing, double finest,
+                     const std::vector<std::uint8_t>& curvesChanged) {
   bool finer = false;
   for (std::size_t k = 0; k < plans.size(); ++k) {
     SheetPlan& sheetPlan = plans[k];
     const double half = sheetPlan.size / 2;
-    if (half < finest * (1 - 1e-9)) continue;
+    const bool halves = half >= finest * (1 - 1e-9);
+    if (!halves && !(sheetPlan.fromBoundary && curvesChanged[k])) continue;
+    const double size = halves ? half : sheetPlan.size;
     if (sheetPlan.fromBoundary) {
+      // A boundary mesh whose curves got closer nodes is made again even at its size, so that
+      // the sheets across those curves meet it on the same nodes.
+      const QuadMesh surface = sheetSurface(sheets[k]);
+      const ReferenceSurface original(surface);
       try {
-        const QuadMesh surface = sheetSurface(sheets[k]);
-        const ReferenceSurface original(surface);
         sheetPlan.boundaryMesh =
-            meshFromBoundary(sheets[k], surface, original, half, plan.targetSize, junctionSpacing,
+            meshFromBoundary(sheets[k], surface, original, size, plan.targetSize, junctionSpacing,
                              hardPoints[k], settings);
       } catch (const extract::NarrowSheetRefusal&) {
+        if (curvesChanged[k]) throw;  // the caller goes back to the curves' previous nodes
         continue;
       }
     }
-    sheetPlan.size = half;
-    finer = true;
+    sheetPlan.size = size;
+    finer = finer || halves;
   }
   return finer;
 }
@@ -422,8 +475,10 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
   std::string sizeNote;
   const SheetHardPoints hardPoints = placeHardPoints(sheets, surroundings.hardPoints);
   if (surroundings.seamSpacing) setSeamSpacing(sheets, *surroundings.seamSpacing, junctionSpacing);
-  const std::vector<Point3> junctionPositions =
+  std::vector<Point3> junctionPositions =
       junctionNodePositions(sheets, extractJunctionSpacing(settings, junctionSpacing));
+  const std::vector<std::vector<std::uint8_t>> insideCurves =
+      curvesInsidePart(sheets, model, plan.part);
   std::vector<Point3> hardPositions;
   for (const Node& node : model.nodes)
     if (surroundings.hardPoints.count(node.id)) hardPositions.push_back(node.xyz);
@@ -489,9 +544,24 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
   try {
     for (int retry = 0; retry <= settings.retries; ++retry) {
       if (retry > 0) {
-        const bool finer =
-            halveSheetSizes(plans, sheets, hardPoints, plan, settings, junctionSpacing, finest);
+        const std::vector<Sheet> before = sheets;
+        const std::vector<SheetPlan> plansBefore = plans;
+        bool finer = false;
+        try {
+          finer =
+              halveSheetSizes(plans, sheets, hardPoints, plan, settings, junctionSpacing, finest,
+                              halveInsideCurves(sheets, insideCurves, junctionSpacing, finest));
+        } catch (const extract::NarrowSheetRefusal&) {
+          // A sheet meshed from its boundary cannot take its curves' closer nodes: all of them
+          // keep theirs, and only the sizes are halved.
+          sheets = before;
+          plans = plansBefore;
+          finer = halveSheetSizes(plans, sheets, hardPoints, plan, settings, junctionSpacing,
+                                  finest, std::vector<std::uint8_t>(sheets.size(), 0));
+        }
         if (!finer) break;
+        junctionPositions =
+            junctionNodePositions(sheets, extractJunctionSpacing(settings, junctionSpacing));
       }
       if (attempt(plans, retry == 0)) return part;
     }
