@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 
@@ -247,6 +248,18 @@ TEST(Pipeline, ANarrowStripAsksItsSeamForItsRowLength) {
   EXPECT_LE(nodesShared(model), 27u);
 }
 
+/// The report of one part of a deck remeshed alone at the default settings (the other parts
+/// kept).
+RemeshedPart remeshOnePart(const std::string& path, Id part) {
+  FeModel model = readDeck(path);
+  RemeshSettings settings;
+  settings.parts = {part};
+  const RemeshReport report = remeshDeck(model, settings);
+  if (report.parts.size() != 1u)
+    throw std::logic_error("one part planned, not " + std::to_string(report.parts.size()));
+  return report.parts[0];
+}
+
 TEST(Pipeline, SatelliteFramesKeepTheirPiecesAndHolesAtBothSizes) {
   // ISat part 2 (frames of channels meshed from their boundaries, patches meeting at a corner on
   // a junction curve) and part 7 (legs with plates inside, joined where a junction curve ends at
@@ -277,12 +290,7 @@ TEST(Pipeline, SatelliteLegsAreRemeshedWithTheirPlatesStandingOnThem) {
   // part passes with every line still an edge of the plates and the panels. (Before, the lines
   // kept the deck's spacing while the panels went finer, and the plates came loose.)
   VOXREMESH_REQUIRE_SHARED_DECK(path, "ISat_Launch_Sm_Rgd.dat");
-  FeModel model = readDeck(path);
-  RemeshSettings settings;
-  settings.parts = {7};
-  const RemeshReport report = remeshDeck(model, settings);
-  ASSERT_EQ(report.parts.size(), 1u);
-  const RemeshedPart& legs = report.parts[0];
+  const RemeshedPart legs = remeshOnePart(path.string(), 7);
   EXPECT_NE(legs.status, PartStatus::Kept) << legs.reason;
   EXPECT_NEAR(legs.acceptance.junctionLength, 194.75, 0.01);
   EXPECT_EQ(legs.acceptance.junctionLengthLost, 0.0);
@@ -354,15 +362,11 @@ TEST(Pipeline, ANarrowPartMeshedFromItsBoundaryIsRetriedWithRowsHalfAsLong) {
   // meshed from its boundary. Its first rows leave a quarter of the elements failing; the retry
   // meshes the sheets again with nodes half as far apart along their free sides, which passes.
   VOXREMESH_REQUIRE_SHARED_DECK(path, "freedlm.bdf");
-  FeModel model = readDeck(path);
-  RemeshSettings settings;
-  settings.parts = {46};
-  const RemeshReport report = remeshDeck(model, settings);
-  ASSERT_EQ(report.parts.size(), 1u);
-  const RemeshedPart& part = report.parts[0];
+  const RemeshedPart part = remeshOnePart(path.string(), 46);
   EXPECT_EQ(part.status, PartStatus::Retried) << part.reason;
   EXPECT_EQ(part.attempts, 2);
-  EXPECT_LE(part.acceptance.failingShare, settings.optimizeSettings.quality.maxFailingShare);
+  EXPECT_LE(part.acceptance.failingShare,
+            RemeshSettings{}.optimizeSettings.quality.maxFailingShare);
 }
 
 /// Remeshes a one-part model at the given target size with the default settings.

@@ -29,7 +29,6 @@
 #include <cstdlib>
 #include <exception>
 #include <memory>
-#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -50,38 +49,6 @@ using voxremesh::bench::secondsSince;
 
 using namespace voxremesh;
 using Clock = std::chrono::steady_clock;
-
-/// The number of boundary loops of a mesh: connected sets of edges that lie in one face.
-std::size_t boundaryLoops(const QuadMesh& mesh) {
-  std::vector<std::pair<CornerIndex, CornerIndex>> edges;
-  for (const auto& face : mesh.faces) {
-    const int n = cornerCount(face);
-    for (int k = 0; k < n; ++k) {
-      const CornerIndex a = face[std::size_t(k)], b = face[std::size_t((k + 1) % n)];
-      edges.emplace_back(std::min(a, b), std::max(a, b));
-    }
-  }
-  std::sort(edges.begin(), edges.end());
-  std::vector<CornerIndex> parent(mesh.points.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](CornerIndex v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  std::vector<std::uint8_t> onBoundary(mesh.points.size(), 0);
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j] == edges[i]) ++j;
-    if (j - i == 1) {
-      onBoundary[edges[i].first] = onBoundary[edges[i].second] = 1;
-      parent[find(edges[i].first)] = find(edges[i].second);
-    }
-    i = j;
-  }
-  std::size_t loops = 0;
-  for (CornerIndex v = 0; v < mesh.points.size(); ++v) loops += onBoundary[v] && find(v) == v;
-  return loops;
-}
 
 /// The share of elements failing one of the criteria the shared data README measures the input
 /// decks with (warping, angles, aspect, scaled Jacobian): 5.1 % for the bracket itself.
@@ -110,7 +77,7 @@ void printQuality(const char* name, const QuadMesh& mesh, const QuadMesh& origin
       name, r.elements, 100.0 * r.triangleShare, 100.0 * r.failingAnyShare, 100.0 * gaussShare,
       100.0 * readmeShare(r), r.distance->max(),
       std::max(r.distance->meanToOriginal, r.distance->meanFromOriginal), r.distanceLimit,
-      boundaryLoops(mesh));
+      topologyCounts(mesh).boundaryLoops);
   std::printf("          failing:");
   for (const CriterionSummary& c : r.criteria)
     if (c.failing) std::printf(" %s %zu", criterionName(c.criterion), c.failing);

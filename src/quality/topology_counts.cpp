@@ -36,9 +36,9 @@ std::size_t setsAmong(DisjointSets& sets, const std::vector<bool>& flagged) {
   return static_cast<std::size_t>(std::unique(roots.begin(), roots.end()) - roots.begin());
 }
 
-}  // namespace
-
-std::vector<std::pair<CornerIndex, CornerIndex>> junctionEdges(const QuadMesh& mesh) {
+/// Every face's edges, each as its two point indices (lower first), sorted: an edge appears once
+/// per face using it.
+std::vector<std::pair<CornerIndex, CornerIndex>> sortedFaceEdges(const QuadMesh& mesh) {
   std::vector<std::pair<CornerIndex, CornerIndex>> edges;
   for (const auto& face : mesh.faces) {
     const int corners = cornerCount(face);
@@ -48,6 +48,13 @@ std::vector<std::pair<CornerIndex, CornerIndex>> junctionEdges(const QuadMesh& m
     }
   }
   std::sort(edges.begin(), edges.end());
+  return edges;
+}
+
+}  // namespace
+
+std::vector<std::pair<CornerIndex, CornerIndex>> junctionEdges(const QuadMesh& mesh) {
+  const std::vector<std::pair<CornerIndex, CornerIndex>> edges = sortedFaceEdges(mesh);
   std::vector<std::pair<CornerIndex, CornerIndex>> shared;
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i;
@@ -62,17 +69,15 @@ TopologyCounts topologyCounts(const QuadMesh& mesh) {
   const std::size_t n = mesh.points.size();
   DisjointSets pieces(n), loops(n);
   std::vector<bool> used(n, false), onBoundary(n, false);
-  std::vector<std::pair<CornerIndex, CornerIndex>> edges;
   for (const auto& face : mesh.faces) {
     const int corners = cornerCount(face);
     for (int k = 0; k < corners; ++k) {
       const CornerIndex a = face[std::size_t(k)], b = face[std::size_t((k + 1) % corners)];
       used[a] = true;
       pieces.join(a, b);
-      edges.emplace_back(std::min(a, b), std::max(a, b));
     }
   }
-  std::sort(edges.begin(), edges.end());
+  const std::vector<std::pair<CornerIndex, CornerIndex>> edges = sortedFaceEdges(mesh);
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i;
     while (j < edges.size() && edges[j] == edges[i]) ++j;
