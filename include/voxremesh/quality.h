@@ -231,10 +231,12 @@ struct TopologyCounts {
 /// name existing points.
 TopologyCounts topologyCounts(const QuadMesh& mesh);
 
-/// The edges of a mesh that three or more faces share (where a fin or a flange stands on a sheet:
-/// T-junctions), each as its two point indices, lower first, in ascending order. Preconditions:
-/// faces name existing points.
-std::vector<std::pair<CornerIndex, CornerIndex>> junctionEdges(const QuadMesh& mesh);
+/// The edges of a mesh that at least `minFaces` and at most `maxFaces` faces share (1 and 1: its
+/// boundary; 3 and more: T-junctions, where a fin or a flange stands on a sheet), each as its two
+/// point indices, lower first, in ascending order. Preconditions: faces name existing points.
+std::vector<std::pair<CornerIndex, CornerIndex>> edgesSharedBy(const QuadMesh& mesh,
+                                                               std::size_t minFaces,
+                                                               std::size_t maxFaces);
 
 /// The curves that bound the channels of a surface for the minimum-length criterion (see the top of
 /// the file): every sheet's boundary loops, feature lines and junction curves, in world

@@ -54,12 +54,13 @@ double distanceToSegment(const Vec3& p, const Vec3& a, const Vec3& b) {
   return norm(a + d * t - p);
 }
 
-/// The length of the T-junction edges of `original` (junctionEdges) whose midpoints are farther
+/// The length of the T-junction edges of `original` (edgesSharedBy) whose midpoints are farther
 /// than `tolerance` from every T-junction edge of `mesh`: where sheets that met no longer share
 /// an edge (a fin whose nodes lie on its sheet's faces instead of being its nodes).
 double lostJunctionLength(const QuadMesh& original, const QuadMesh& mesh, double tolerance,
                           double& total) {
-  const auto before = junctionEdges(original), after = junctionEdges(mesh);
+  constexpr std::size_t kAny = std::numeric_limits<std::size_t>::max();
+  const auto before = edgesSharedBy(original, 3, kAny), after = edgesSharedBy(mesh, 3, kAny);
   double lost = 0.0;
   total = 0.0;
   for (const auto& [a, b] : before) {

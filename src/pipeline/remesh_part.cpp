@@ -364,6 +364,21 @@ std::vector<std::uint8_t> halveInsideCurves(std::vector<Sheet>& sheets,
   return changed;
 }
 
+/// The node spacing of every junction curve of `sheets`, sheet by sheet, in order.
+std::vector<double> junctionCurveSpacings(const std::vector<Sheet>& sheets) {
+  std::vector<double> spacings;
+  for (const Sheet& sheet : sheets)
+    for (const Polyline& curve : sheet.junctionCurves) spacings.push_back(curve.nodeSpacing);
+  return spacings;
+}
+
+/// Gives the junction curves of `sheets` the spacings junctionCurveSpacings returned for them.
+void setJunctionCurveSpacings(std::vector<Sheet>& sheets, const std::vector<double>& spacings) {
+  std::size_t i = 0;
+  for (Sheet& sheet : sheets)
+    for (Polyline& curve : sheet.junctionCurves) curve.nodeSpacing = spacings[i++];
+}
+
 /// The plans of a finer attempt: every sheet at half its size where that stays at `finest` or
 /// above, a volume at half the voxel, a boundary-meshed sheet meshed again with nodes half as far
 /// apart along its free stretches (as it was where that is refused), and meshed again at its size
@@ -544,7 +559,7 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
   try {
     for (int retry = 0; retry <= settings.retries; ++retry) {
       if (retry > 0) {
-        const std::vector<Sheet> before = sheets;
+        const std::vector<double> spacingsBefore = junctionCurveSpacings(sheets);
         const std::vector<SheetPlan> plansBefore = plans;
         bool finer = false;
         try {
@@ -554,7 +569,7 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
         } catch (const extract::NarrowSheetRefusal&) {
           // A sheet meshed from its boundary cannot take its curves' closer nodes: all of them
           // keep theirs, and only the sizes are halved.
-          sheets = before;
+          setJunctionCurveSpacings(sheets, spacingsBefore);
           plans = plansBefore;
           finer = halveSheetSizes(plans, sheets, hardPoints, plan, settings, junctionSpacing,
                                   finest, std::vector<std::uint8_t>(sheets.size(), 0));

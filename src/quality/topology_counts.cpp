@@ -1,5 +1,5 @@
-// topologyCounts: components and boundary loops of a mesh; junctionEdges: its T-junctions
-// (quality.h).
+// topologyCounts: components and boundary loops of a mesh; edgesSharedBy: its edges by how many
+// faces share them (quality.h).
 #include <algorithm>
 #include <numeric>
 #include <utility>
@@ -53,13 +53,15 @@ std::vector<std::pair<CornerIndex, CornerIndex>> sortedFaceEdges(const QuadMesh&
 
 }  // namespace
 
-std::vector<std::pair<CornerIndex, CornerIndex>> junctionEdges(const QuadMesh& mesh) {
+std::vector<std::pair<CornerIndex, CornerIndex>> edgesSharedBy(const QuadMesh& mesh,
+                                                               std::size_t minFaces,
+                                                               std::size_t maxFaces) {
   const std::vector<std::pair<CornerIndex, CornerIndex>> edges = sortedFaceEdges(mesh);
   std::vector<std::pair<CornerIndex, CornerIndex>> shared;
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i;
     while (j < edges.size() && edges[j] == edges[i]) ++j;
-    if (j - i >= 3) shared.push_back(edges[i]);
+    if (j - i >= minFaces && j - i <= maxFaces) shared.push_back(edges[i]);
     i = j;
   }
   return shared;
@@ -77,15 +79,9 @@ TopologyCounts topologyCounts(const QuadMesh& mesh) {
       pieces.join(a, b);
     }
   }
-  const std::vector<std::pair<CornerIndex, CornerIndex>> edges = sortedFaceEdges(mesh);
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j] == edges[i]) ++j;
-    if (j - i == 1) {
-      loops.join(edges[i].first, edges[i].second);
-      onBoundary[edges[i].first] = onBoundary[edges[i].second] = true;
-    }
-    i = j;
+  for (const auto& [a, b] : edgesSharedBy(mesh, 1, 1)) {
+    loops.join(a, b);
+    onBoundary[a] = onBoundary[b] = true;
   }
   return {setsAmong(pieces, used), setsAmong(loops, onBoundary)};
 }
