@@ -77,12 +77,31 @@ std::vector<double> fractions(const std::vector<Vec3>& row) {
   return f;
 }
 
+/// True when the quad is convex, agrees with the surface normal and stays within `tolerance` of
+/// the surface at its centre and edge midpoints, and, where `sagittaShare` is positive, within
+/// that share of the edge's length at an edge's midpoint and of the longer diagonal's at the
+/// centre (a quad across a curved surface then keeps its area).
+bool quadOnSurface(const std::array<Vec3, 4>& q, const ReferenceSurface& reference,
+                   const NormalAt& normalAt, double tolerance, double sagittaShare) {
+  const auto within = [&](const Vec3& p, double length) {
+    const double limit =
+        sagittaShare > 0.0 ? std::min(tolerance, sagittaShare * length) : tolerance;
+    return reference.closestPoint(p).distance <= limit;
+  };
+  const Vec3 centre = (q[0] + q[1] + q[2] + q[3]) * 0.25;
+  if (!convexQuad(q, normalAt(centre))) return false;
+  if (!within(centre, std::max(distance(q[0], q[2]), distance(q[1], q[3])))) return false;
+  for (std::size_t c = 0; c < 4; ++c)
+    if (!within((q[c] + q[(c + 1) % 4]) * 0.5, distance(q[c], q[(c + 1) % 4]))) return false;
+  return true;
+}
+
 }  // namespace
 
 std::optional<MappedPatch> mappedPatch(const PolylineParam& loop,
                                        const std::vector<LoopNode>& nodes,
                                        const ReferenceSurface& reference, const NormalAt& normalAt,
-                                       double tolerance) {
+                                       double tolerance, double sagittaShare) {
   if (nodes.size() < 4) return std::nullopt;
   const std::vector<std::size_t> corners = turningNodes(nodes);
   if (corners.size() != 4) return std::nullopt;
@@ -138,12 +157,7 @@ std::optional<MappedPatch> mappedPatch(const PolylineParam& loop,
       const std::array<std::uint32_t, 4> quad{index(i, j), index(i + 1, j), index(i + 1, j + 1),
                                               index(i, j + 1)};
       const std::array<Vec3, 4> q{point(quad[0]), point(quad[1]), point(quad[2]), point(quad[3])};
-      const Vec3 centre = (q[0] + q[1] + q[2] + q[3]) * 0.25;
-      if (!convexQuad(q, normalAt(centre))) return std::nullopt;
-      if (reference.closestPoint(centre).distance > tolerance) return std::nullopt;
-      for (std::size_t c = 0; c < 4; ++c)
-        if (reference.closestPoint((q[c] + q[(c + 1) % 4]) * 0.5).distance > tolerance)
-          return std::nullopt;
+      if (!quadOnSurface(q, reference, normalAt, tolerance, sagittaShare)) return std::nullopt;
       patch.quads.push_back(quad);
     }
   }
@@ -151,18 +165,6 @@ std::optional<MappedPatch> mappedPatch(const PolylineParam& loop,
 }
 
 namespace {
-
-/// True when the quad is convex, agrees with the surface normal and stays within `tolerance` of
-/// the surface at its centre and edge midpoints.
-bool quadOnSurface(const std::array<Vec3, 4>& q, const ReferenceSurface& reference,
-                   const NormalAt& normalAt, double tolerance) {
-  const Vec3 centre = (q[0] + q[1] + q[2] + q[3]) * 0.25;
-  if (!convexQuad(q, normalAt(centre))) return false;
-  if (reference.closestPoint(centre).distance > tolerance) return false;
-  for (std::size_t c = 0; c < 4; ++c)
-    if (reference.closestPoint((q[c] + q[(c + 1) % 4]) * 0.5).distance > tolerance) return false;
-  return true;
-}
 
 /// The whole closed loop spaced evenly with `count` nodes from its first node.
 Side respacedLoop(const PolylineParam& loop, const Side& nodes, std::size_t count) {
@@ -189,7 +191,7 @@ bool movableLoop(const Side& nodes) {
 std::optional<MappedRing> mappedRing(const std::array<PolylineParam, 2>& loops,
                                      std::array<std::vector<LoopNode>, 2> nodes, double spacing,
                                      const ReferenceSurface& reference, const NormalAt& normalAt,
-                                     double tolerance) {
+                                     double tolerance, double sagittaShare) {
   if (nodes[0].size() < 3 || nodes[1].size() < 3) return std::nullopt;
   if (nodes[0].size() != nodes[1].size()) {
     const std::size_t more = nodes[0].size() > nodes[1].size() ? 0 : 1;
@@ -244,12 +246,12 @@ std::optional<MappedRing> mappedRing(const std::array<PolylineParam, 2>& loops,
                                         index(i, k + 1)};
       if (reversed) std::swap(quad[1], quad[3]);
       std::array<Vec3, 4> q{point(quad[0]), point(quad[1]), point(quad[2]), point(quad[3])};
-      if (!quadOnSurface(q, reference, normalAt, tolerance)) {
+      if (!quadOnSurface(q, reference, normalAt, tolerance, sagittaShare)) {
         if (!ring.quads.empty()) return std::nullopt;
         reversed = true;  // the first quad decides the orientation
         std::swap(quad[1], quad[3]);
         std::swap(q[1], q[3]);
-        if (!quadOnSurface(q, reference, normalAt, tolerance)) return std::nullopt;
+        if (!quadOnSurface(q, reference, normalAt, tolerance, sagittaShare)) return std::nullopt;
       }
       ring.quads.push_back(quad);
     }

@@ -47,12 +47,14 @@ using NormalAt = std::function<std::array<double, 3>(const std::array<double, 3>
 /// @param reference  the surface the inner nodes are laid on
 /// @param normalAt   the surface normal at a point, which every quad must agree with
 /// @param tolerance  largest distance of a quad's centre and edge midpoints from the surface
+/// @param sagittaShare  where positive, the largest such distance as a share of the edge's length
+///                   (the longer diagonal's at the centre)
 /// @return the grid, or nothing when the patch is not four-sided, opposite counts cannot be
 ///         matched, or a quad is not convex or leaves the surface
 std::optional<MappedPatch> mappedPatch(const PolylineParam& loop,
                                        const std::vector<LoopNode>& nodes,
                                        const ReferenceSurface& reference, const NormalAt& normalAt,
-                                       double tolerance);
+                                       double tolerance, double sagittaShare);
 
 /// The rows of mappedRing: both loops' nodes (a loop may have been spaced again), the nodes inside
 /// (row after row), and the quads (indices: the first loop's nodes, the second's, then the inner
@@ -75,11 +77,13 @@ struct MappedRing {
 /// @param reference  the surface the inner nodes are laid on
 /// @param normalAt   the surface normal at a point, which every quad must agree with
 /// @param tolerance  largest distance of a quad's centre and edge midpoints from the surface
+/// @param sagittaShare  where positive, the largest such distance as a share of the edge's length
+///                   (the longer diagonal's at the centre)
 /// @return the rows, or nothing when the counts cannot be matched, or a quad is not convex or
 ///         leaves the surface
 std::optional<MappedRing> mappedRing(const std::array<PolylineParam, 2>& loops,
                                      std::array<std::vector<LoopNode>, 2> nodes, double spacing,
                                      const ReferenceSurface& reference, const NormalAt& normalAt,
-                                     double tolerance);
+                                     double tolerance, double sagittaShare);
 
 }  // namespace voxremesh::extract

@@ -214,9 +214,11 @@ std::vector<LoopNode> loopNodes(const std::vector<Vec3>& points, const std::vect
 }
 
 /// True when points sampled along the chord a-b, at most a quarter of `spacing` apart, all lie
-/// within `tolerance` of the surface.
+/// within `tolerance`, and within `sagittaShare` x its length where that is positive, of the
+/// surface.
 bool chordOnSurface(const Vec3& a, const Vec3& b, const ReferenceSurface& reference, double spacing,
-                    double tolerance) {
+                    double tolerance, double sagittaShare) {
+  if (sagittaShare > 0.0) tolerance = std::min(tolerance, sagittaShare * distance(a, b));
   const long samples = std::max(4L, long(std::ceil(distance(a, b) / (0.25 * spacing))));
   for (long q = 1; q < samples; ++q)
     if (reference.closestPoint(a + (b - a) * (double(q) / double(samples))).distance > tolerance)
@@ -248,8 +250,9 @@ void addRowFaces(QuadMesh& mesh, const std::vector<Vec3>& polygon,
   const std::vector<PolygonFace> faces = polygonQuads(
       polygon, normals, settings.maxChord,
       [&](std::size_t i, std::size_t j) {
-        return pointOf[i] != pointOf[j] && chordOnSurface(polygon[i], polygon[j], reference,
-                                                          settings.spacing, settings.tolerance);
+        return pointOf[i] != pointOf[j] &&
+               chordOnSurface(polygon[i], polygon[j], reference, settings.spacing,
+                              settings.tolerance, settings.sagittaShare);
       },
       settings.criteria);
   if (faces.empty())
@@ -271,7 +274,7 @@ QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& 
   mesh.curves.push_back({loopPoints, true, PointRole::Boundary});
   const auto surfaceNormal = [&](const Vec3& p) { return normalAt(surface, reference, p); };
   if (const auto grid = mappedPatch(PolylineParam(loopPoints, true), nodes, reference,
-                                    surfaceNormal, settings.tolerance)) {
+                                    surfaceNormal, settings.tolerance, settings.sagittaShare)) {
     for (const LoopNode& node : grid->loop) {
       mesh.points.push_back(node.point);
       mesh.constraints.push_back({node.role, 0});
@@ -316,7 +319,7 @@ QuadMesh meshRing(const std::array<std::vector<Vec3>, 2>& loops,
   const auto surfaceNormal = [&](const Vec3& p) { return normalAt(surface, reference, p); };
   if (const auto rows = mappedRing({PolylineParam(loops[0], true), PolylineParam(loops[1], true)},
                                    {first, second}, settings.spacing, reference, surfaceNormal,
-                                   settings.tolerance)) {
+                                   settings.tolerance, settings.sagittaShare)) {
     QuadMesh mesh;
     for (std::uint32_t l = 0; l < 2; ++l) {
       mesh.curves.push_back({loops[l], true, PointRole::Boundary});
@@ -338,8 +341,9 @@ QuadMesh meshRing(const std::array<std::vector<Vec3>, 2>& loops,
   for (std::size_t a = 0; a < first.size(); ++a)
     for (std::size_t b = 0; b < second.size(); ++b) {
       const double d = distance(first[a].point, second[b].point);
-      if (d < shortest && chordOnSurface(first[a].point, second[b].point, reference,
-                                         settings.spacing, settings.tolerance))
+      if (d < shortest &&
+          chordOnSurface(first[a].point, second[b].point, reference, settings.spacing,
+                         settings.tolerance, settings.sagittaShare))
         shortest = d, a0 = a, b0 = b;
     }
   if (a0 == first.size())

@@ -43,6 +43,10 @@ struct NarrowSheetSettings {
   double spacing = 0.0;    ///< distance of the nodes along free stretches of the loop, > 0
   double tolerance = 0.0;  ///< largest distance of a face's chords from the sheet, > 0
   double maxChord = 0.0;   ///< the longest edge across the sheet, > 0
+  /// The largest distance of an edge across the sheet from it as a share of the edge's length
+  /// (a sagitta; below `tolerance` on short edges), so that rows across a sheet curved across
+  /// keep its area; 0: `tolerance` alone.
+  double sagittaShare = 0.0;
   /// The quality limits the faces of a row are chosen by (polygon_quads.h); targetSize unused.
   QualitySettings criteria;
 };

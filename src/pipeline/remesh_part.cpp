@@ -2,6 +2,7 @@
 // acceptance, else kept (remesh_part.h).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <limits>
 #include <new>
@@ -13,6 +14,7 @@
 #include "extract/narrow_sheet.h"
 #include "pipeline/remesh_part.h"
 #include "pipeline/seam_spacing.h"
+#include "voxremesh/deck_compare.h"
 #include "voxremesh/errors.h"
 
 namespace voxremesh::pipeline {
@@ -26,6 +28,10 @@ constexpr double kJunctionNodeShare = 1e-6;
 constexpr double kNarrowChordShare = 0.125;
 /// A narrow sheet's edges across it may be this many times its width (or spacing) long.
 constexpr double kNarrowChordWidths = 3.0;
+/// An edge across a narrow sheet may lie this share of its length from it: an arc cut by chords
+/// of sagitta s and length c is 8/3 (s/c)^2 longer than they are, so a sheet curved across keeps
+/// its area within half the acceptance's limit (kAreaTolerance).
+const double kNarrowSagittaShare = std::sqrt(3.0 / 16.0 * kAreaTolerance);
 
 double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -77,6 +83,7 @@ QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
   narrow.spacing = spacing;
   narrow.tolerance = kNarrowChordShare * targetSize;
   narrow.maxChord = kNarrowChordWidths * std::max(sheetWidth(sheet), spacing);
+  narrow.sagittaShare = kNarrowSagittaShare;
   narrow.criteria = settings.optimizeSettings.quality;
   QuadMesh mesh = extract::meshNarrowSheet(
       sheet, surface, original,
