@@ -3,6 +3,7 @@
 // "Junctions"; pipeline.h partVolumes; quad_mesh.h joinAtJunctions).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -98,6 +99,39 @@ TEST(JunctionNodes, AnEvenPieceEndingOnACurvePointButForRoundingEndsOnIt) {
   EXPECT_TRUE(nodes.edge(curve.points[0], curve.points[1])->points.empty());
   ASSERT_NE(nodes.edge(curve.points[1], curve.points[2]), nullptr);
   EXPECT_EQ(nodes.edge(curve.points[1], curve.points[2])->points.size(), 1u);
+}
+
+TEST(JunctionNodes, ACircleGetsNodesCloseEnoughToKeepItsLengthWithTheSagittaLimit) {
+  // A circle of radius 8.6 in 24 points (the edge of a ring) at spacing 9: six even pieces whose
+  // chords lie 1.15 from it, within the tolerance of 1.8, but 4.5 % shorter than the circle.
+  // With the sagitta limit (kChordSagittaShare, 4.33 % of a chord's length) every curve point
+  // lies within that share of its chord, and the nodes' polygon is less than 0.5 % shorter.
+  VolumeCurve curve;
+  curve.closed = true;
+  const double radius = 8.6, pi = std::acos(-1.0);
+  for (int i = 0; i < 24; ++i)
+    curve.points.push_back(
+        {0.0, radius * std::cos(2.0 * pi * i / 24.0), radius * std::sin(2.0 * pi * i / 24.0)});
+  const auto polygonLength = [&](const extract::JunctionNodes& nodes) {
+    double length = 0.0;
+    const std::vector<Point3> all = nodes.nodes();
+    // The nodes of a circle in angular order.
+    std::vector<std::pair<double, Point3>> byAngle;
+    for (const Point3& p : all) byAngle.push_back({std::atan2(p[2], p[1]), p});
+    std::sort(byAngle.begin(), byAngle.end());
+    for (std::size_t i = 0; i < byAngle.size(); ++i) {
+      const Point3& a = byAngle[i].second;
+      const Point3& b = byAngle[(i + 1) % byAngle.size()].second;
+      length += std::hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]);
+    }
+    return length;
+  };
+  const double circle = 24.0 * 2.0 * radius * std::sin(pi / 24.0);
+  const extract::JunctionNodes even({curve}, 9.0, 1.8);
+  EXPECT_EQ(even.nodes().size(), 6u);
+  EXPECT_LT(polygonLength(even), 0.96 * circle);
+  const extract::JunctionNodes kept({curve}, 9.0, 1.8, 0.0433);
+  EXPECT_GT(polygonLength(kept), 0.995 * circle);
 }
 
 TEST(JunctionNodes, SameNodesWhicheverWayAndWhereverTheCurveStarts) {

@@ -277,6 +277,32 @@ TEST(NarrowSheet, ARingGetsOneRowRoundItsHole) {
     EXPECT_NE(constraint.role, PointRole::Free);
 }
 
+TEST(NarrowSheet, ARoundRingsLoopsGetNodesCloseEnoughToKeepItsArea) {
+  // A flat ring between radii 6 and 8.6 in 24 quads round, meshed at 9 (the edge of a frame at a
+  // deck's size): nodes about 9 apart on its loops, plus the loop points farther than the
+  // tolerance from their chords, cut 11 % of its area off. With the sagitta limit every loop
+  // point lies within 4.33 % of its chord's length, and less than 1 % of the area is lost.
+  FeModel model;
+  const double pi = std::acos(-1.0);
+  for (int i = 0; i < 24; ++i)
+    for (int r = 0; r < 2; ++r) {
+      const double radius = r == 0 ? 6.0 : 8.6, angle = 2.0 * pi * i / 24.0;
+      model.nodes.push_back(
+          {Id(1 + 2 * i + r), {radius * std::cos(angle), radius * std::sin(angle), 0.0}});
+    }
+  for (int i = 0; i < 24; ++i) {
+    const int j = (i + 1) % 24;
+    model.shells.push_back(
+        {Id(i + 1), 1, {Id(1 + 2 * i), Id(1 + 2 * j), Id(2 + 2 * j), Id(2 + 2 * i)}});
+  }
+  model.partOrAdd(1);
+  double ringArea = 0.0;
+  for (const double radius : {8.6, -6.0})
+    ringArea += (radius > 0 ? 1.0 : -1.0) * 12.0 * radius * radius * std::sin(2.0 * pi / 24.0);
+  EXPECT_LT(area(meshStrip(model, 1, 9.0, 1.125)), 0.99 * ringArea);
+  EXPECT_GT(area(meshStrip(model, 1, 9.0, 1.125, 0.0, {}, 0.0433)), 0.99 * ringArea);
+}
+
 TEST(NarrowSheet, ASheetWithTwoHolesIsRefused) {
   FeModel model = strip(5, 3, 1.0, 1.0);
   model.shells.erase(model.shells.begin() + 8);  // row 1, i = 3

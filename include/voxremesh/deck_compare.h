@@ -31,6 +31,14 @@ namespace voxremesh {
 
 /// A part's area may change by this share of its area before it counts as lost.
 inline constexpr double kAreaTolerance = 0.01;
+/// The largest distance of a mesh's chord (an edge, a node-to-node piece of a curve) from the
+/// surface or curve it stands for, as a share of the chord's length: an arc cut by chords of
+/// sagitta s and length c is 8/3 (s/c)^2 longer than they are, so this share (the square root of
+/// 3/16 kAreaTolerance) keeps a curved surface's area within half the area limit.
+inline constexpr double kChordSagittaShare = 0.0433;
+static_assert(kChordSagittaShare * kChordSagittaShare > 0.99 * 3.0 / 16.0 * kAreaTolerance &&
+                  kChordSagittaShare * kChordSagittaShare < 1.01 * 3.0 / 16.0 * kAreaTolerance,
+              "kChordSagittaShare follows kAreaTolerance");
 /// The total pressure force may change by this share of its length before it counts as lost.
 inline constexpr double kLoadTolerance = 0.01;
 

@@ -11,6 +11,7 @@
 #include "extract/feature_snap.h"
 #include "volume/volume_build.h"
 #include "volume/volume_grids.h"
+#include "voxremesh/deck_compare.h"
 
 namespace voxremesh {
 
@@ -158,7 +159,8 @@ QuadMesh extractQuadMesh(const Volume& volume, const ExtractSettings& settings,
   if (rebuild) {
     const double voxel = volume.info().voxelSize;
     const double spacing = settings.junctionSpacing > 0.0 ? settings.junctionSpacing : voxel;
-    const extract::JunctionNodes junctions(volume.junctionCurves(), spacing, 0.2 * spacing);
+    const extract::JunctionNodes junctions(volume.junctionCurves(), spacing, 0.2 * spacing,
+                                           kChordSagittaShare);
     const extract::StripStats strip =
         extract::rebuildBoundaryStrip(mesh, loopCurves, volume.featurePoints(), junctions, voxel,
                                       0.2 * voxel, kStripReachVoxels * voxel);

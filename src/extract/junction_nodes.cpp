@@ -91,12 +91,15 @@ struct Walk {
   }
 };
 
-/// Adds the curve points strictly between nodes x and y that lie farther than `tolerance` from
-/// the chord between them, farthest first and recursively.
+/// Adds the curve points strictly between nodes x and y that lie farther than `tolerance` (or
+/// `sagittaShare` x the chord's length, where positive and less) from the chord between them,
+/// farthest first and recursively.
 void addFarPoints(const Walk& walk, const CurveNode& x, const CurveNode& y, double tolerance,
-                  std::vector<CurveNode>& out) {
+                  double sagittaShare, std::vector<CurveNode>& out) {
   const Point3 a = walk.position(x), b = walk.position(y);
-  double worst = tolerance, worstParam = 0.0;
+  double worst =
+      sagittaShare > 0.0 ? std::min(tolerance, sagittaShare * distance(a, b)) : tolerance;
+  double worstParam = 0.0;
   std::size_t worstPoint = SIZE_MAX;
   const std::size_t n = walk.points.size();
   for (std::size_t k = 0; k < (walk.closed ? 2 * n : n); ++k) {
@@ -118,9 +121,9 @@ void addFarPoints(const Walk& walk, const CurveNode& x, const CurveNode& y, doub
   }
   if (worstPoint == SIZE_MAX) return;
   const CurveNode middle{worstParam, worstPoint};
-  addFarPoints(walk, x, middle, tolerance, out);
+  addFarPoints(walk, x, middle, tolerance, sagittaShare, out);
   out.push_back(middle);
-  addFarPoints(walk, middle, y, tolerance, out);
+  addFarPoints(walk, middle, y, tolerance, sagittaShare, out);
 }
 
 /// True when every segment of the curve is within kKeptSpacingFactor of `spacing`: its points
@@ -139,7 +142,7 @@ bool segmentsFitSpacing(const Walk& walk, double spacing) {
 /// A curve that keeps its points (VolumeCurve::keepPoints), or whose points are already spaced
 /// as the sampling would space them (segmentsFitSpacing), has every point as a node and no other.
 std::vector<CurveNode> sampleCurve(const Walk& walk, bool keepPoints, double spacing,
-                                   double tolerance) {
+                                   double tolerance, double sagittaShare) {
   const std::size_t n = walk.points.size();
   if (keepPoints || segmentsFitSpacing(walk, spacing)) {
     std::vector<CurveNode> nodes;
@@ -170,7 +173,7 @@ std::vector<CurveNode> sampleCurve(const Walk& walk, bool keepPoints, double spa
     for (std::size_t j = 0; j + 1 < span.size(); ++j) {
       nodes.push_back(span[j]);
       // Parameters beyond the closing point wrap around for the far-point search.
-      addFarPoints(walk, span[j], span[j + 1], tolerance, nodes);
+      addFarPoints(walk, span[j], span[j + 1], tolerance, sagittaShare, nodes);
     }
     if (!walk.closed && k + 2 == anchors.size()) nodes.push_back(span.back());
   }
@@ -180,11 +183,12 @@ std::vector<CurveNode> sampleCurve(const Walk& walk, bool keepPoints, double spa
 }  // namespace
 
 JunctionNodes::JunctionNodes(const std::vector<VolumeCurve>& curves, double spacing,
-                             double tolerance) {
-  add(curves, spacing, tolerance);
+                             double tolerance, double sagittaShare) {
+  add(curves, spacing, tolerance, sagittaShare);
 }
 
-void JunctionNodes::add(const std::vector<VolumeCurve>& curves, double spacing, double tolerance) {
+void JunctionNodes::add(const std::vector<VolumeCurve>& curves, double spacing, double tolerance,
+                        double sagittaShare) {
   if (!(spacing > 0.0) || !std::isfinite(spacing) || !(tolerance > 0.0) ||
       !std::isfinite(tolerance))
     throw std::invalid_argument("junction nodes: spacing and tolerance must be positive");
@@ -196,7 +200,7 @@ void JunctionNodes::add(const std::vector<VolumeCurve>& curves, double spacing, 
     const double own =
         curve.nodeSpacing > 0.0 && std::isfinite(curve.nodeSpacing) ? curve.nodeSpacing : spacing;
     const std::vector<CurveNode> nodes =
-        sampleCurve(walk, curve.keepPoints, own, tolerance * own / spacing);
+        sampleCurve(walk, curve.keepPoints, own, tolerance * own / spacing, sagittaShare);
     const std::size_t segments = walk.arc.size() - 1;
     std::vector<JunctionEdgeNodes> perEdge(segments);
     for (std::size_t s = 0; s < segments; ++s) perEdge[s].from = walk.at(s);

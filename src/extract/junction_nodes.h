@@ -10,8 +10,9 @@
 // - Anchors: the ends of an open curve, and the points where the curve turns by more than
 //   kJunctionCornerDeg; a closed curve without such a point is anchored at its start.
 // - Between consecutive anchors (arc length L) round(L / spacing) (at least one) pieces of equal
-//   arc length; where the chord between two nodes misses a curve point by more than `tolerance`,
-//   that point becomes a node too (farthest first, recursively, as Douglas-Peucker).
+//   arc length; where the chord between two nodes misses a curve point by more than `tolerance`
+//   (or than `sagittaShare` of the chord's length, where that is less), that point becomes a node
+//   too (farthest first, recursively, as Douglas-Peucker).
 // - A node at a curve point takes its exact coordinates.
 // - A curve that keeps its points (the seam to a part that keeps its elements), or whose every
 //   segment is already within a factor 1.5 of the spacing (the range of an even sampling's
@@ -53,12 +54,16 @@ class JunctionNodes {
   ///                   VolumeCurve::nodeSpacing of its own is sampled at that instead, with the
   ///                   tolerance scaled alike
   /// @param tolerance  largest distance of a curve point from the chord between two nodes, > 0
+  /// @param sagittaShare  where positive, the largest such distance as a share of the chord's
+  ///                   length (where that is less than the tolerance)
   /// Throws std::invalid_argument when spacing or tolerance is not positive and finite.
-  JunctionNodes(const std::vector<VolumeCurve>& curves, double spacing, double tolerance);
+  JunctionNodes(const std::vector<VolumeCurve>& curves, double spacing, double tolerance,
+                double sagittaShare = 0.0);
 
   /// Samples more curves, at their own spacing and tolerance (as the constructor); an edge that
   /// already has nodes keeps them. Throws as the constructor.
-  void add(const std::vector<VolumeCurve>& curves, double spacing, double tolerance);
+  void add(const std::vector<VolumeCurve>& curves, double spacing, double tolerance,
+           double sagittaShare = 0.0);
 
   /// True when there are no junction curves.
   bool empty() const { return edges_.empty(); }

@@ -178,14 +178,16 @@ std::vector<LoopNode> fillFreeGaps(const NodeLoop& walk, const std::vector<LoopN
   return nodes;
 }
 
-/// Adds the loop points farther than `tolerance` from the chords of free gaps, then one node in
-/// the longest free gap when the count is odd (quads need an even count); keeps the order.
-void addFarPointsAndEvenCount(const NodeLoop& walk, std::vector<LoopNode>& nodes,
-                              double tolerance) {
+/// Adds the loop points farther than `tolerance` (or `sagittaShare` x the chord's length, where
+/// that is less) from the chords of free gaps, then one node in the longest free gap when the
+/// count is odd (quads need an even count); keeps the order.
+void addFarPointsAndEvenCount(const NodeLoop& walk, std::vector<LoopNode>& nodes, double tolerance,
+                              double sagittaShare) {
   std::vector<double> far;
   for (std::size_t j = 0; j < nodes.size(); ++j)
     if (walk.free(nodes, j))
-      addFarVertices(walk.loop, nodes[j].param, walk.gapEnd(nodes, j), tolerance, far);
+      addFarVertices(walk.loop, nodes[j].param, walk.gapEnd(nodes, j), tolerance, far,
+                     sagittaShare);
   for (const double v : far) nodes.push_back(walk.nodeAt(v));
   std::stable_sort(nodes.begin(), nodes.end(), byParam);
   if (nodes.size() % 2 == 0) return;
@@ -203,12 +205,12 @@ void addFarPointsAndEvenCount(const NodeLoop& walk, std::vector<LoopNode>& nodes
 /// The nodes on the loop (see narrow_sheet.h), ascending arc length; free stretches also line up
 /// with the nodes of `across` (those of another loop of the patch).
 std::vector<LoopNode> loopNodes(const std::vector<Vec3>& points, const std::vector<char>& corner,
-                                const JunctionNodes& junctions, double spacing, double tolerance,
-                                double reach, const std::vector<FacingSource>& across) {
+                                const JunctionNodes& junctions, const NarrowSheetSettings& settings,
+                                const std::vector<FacingSource>& across) {
   const NodeLoop walk(points, junctions);
-  std::vector<LoopNode> nodes =
-      fillFreeGaps(walk, anchorNodes(walk, points, corner, junctions), spacing, reach, across);
-  addFarPointsAndEvenCount(walk, nodes, tolerance);
+  std::vector<LoopNode> nodes = fillFreeGaps(walk, anchorNodes(walk, points, corner, junctions),
+                                             settings.spacing, settings.maxChord, across);
+  addFarPointsAndEvenCount(walk, nodes, settings.tolerance, settings.sagittaShare);
   for (std::size_t j = 0; j < nodes.size(); ++j) nodes[j].fixedAfter = !walk.free(nodes, j);
   return nodes;
 }
@@ -268,8 +270,7 @@ void addRowFaces(QuadMesh& mesh, const std::vector<Vec3>& polygon,
 QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& corner,
                   const QuadMesh& surface, const ReferenceSurface& reference,
                   const JunctionNodes& junctions, const NarrowSheetSettings& settings) {
-  const std::vector<LoopNode> nodes = loopNodes(loopPoints, corner, junctions, settings.spacing,
-                                                settings.tolerance, settings.maxChord, {});
+  const std::vector<LoopNode> nodes = loopNodes(loopPoints, corner, junctions, settings, {});
   QuadMesh mesh;
   mesh.curves.push_back({loopPoints, true, PointRole::Boundary});
   const auto surfaceNormal = [&](const Vec3& p) { return normalAt(surface, reference, p); };
@@ -307,15 +308,13 @@ QuadMesh meshRing(const std::array<std::vector<Vec3>, 2>& loops,
                   const std::array<std::vector<char>, 2>& corners, const QuadMesh& surface,
                   const ReferenceSurface& reference, const JunctionNodes& junctions,
                   const NarrowSheetSettings& settings) {
-  const std::vector<LoopNode> first = loopNodes(loops[0], corners[0], junctions, settings.spacing,
-                                                settings.tolerance, settings.maxChord, {});
+  const std::vector<LoopNode> first = loopNodes(loops[0], corners[0], junctions, settings, {});
   std::vector<FacingSource> across;
   const PolylineParam firstLoop(loops[0], true);
   for (const LoopNode& node : first)
     if (node.role != PointRole::Corner)
       across.push_back({node.point, tangentAt(firstLoop, node.param)});
-  const std::vector<LoopNode> second = loopNodes(loops[1], corners[1], junctions, settings.spacing,
-                                                 settings.tolerance, settings.maxChord, across);
+  const std::vector<LoopNode> second = loopNodes(loops[1], corners[1], junctions, settings, across);
   const auto surfaceNormal = [&](const Vec3& p) { return normalAt(surface, reference, p); };
   if (const auto rows = mappedRing({PolylineParam(loops[0], true), PolylineParam(loops[1], true)},
                                    {first, second}, settings.spacing, reference, surfaceNormal,
@@ -421,7 +420,8 @@ QuadMesh meshNarrowSheet(const Sheet& sheet, const QuadMesh& surface,
     // Cut at the feature lines too (walls and cap of a box), with nodes on them shared by the
     // patches on both sides.
     JunctionNodes withFeatures = junctions;
-    withFeatures.add(featureCurves(sheet), settings.spacing, 0.2 * settings.spacing);
+    withFeatures.add(featureCurves(sheet), settings.spacing, 0.2 * settings.spacing,
+                     settings.sagittaShare);
     try {
       return meshPatches(sheet, sheetPatches(sheet, true), surface, reference, withFeatures,
                          settings);

@@ -10,7 +10,8 @@
 //   part gets the same ones;
 // - on free stretches, first the points facing nodes already placed across the patch (where the
 //   loop runs against the node's stretch), then nodes evenly spaced about `spacing` apart, then
-//   loop points farther than `tolerance` from the chord between two nodes (Douglas-Peucker), and
+//   loop points farther than `tolerance` (or `sagittaShare` of its length) from the chord between
+//   two nodes (Douglas-Peucker), and
 //   one more node where the count would be odd.
 // Faces: a disk whose loop turns sharply at exactly four nodes becomes a grid (mapped_patch.h,
 // nodes inside where it is more than one element wide); any other disk, and a ring joined into

@@ -84,10 +84,11 @@ double PolylineParam::boxDistance(const Vec3d& p) const {
 }
 
 void addFarVertices(const PolylineParam& line, double s0, double s1, double tolerance,
-                    std::vector<double>& out) {
+                    std::vector<double>& out, double sagittaShare) {
   const double length = line.length();
   const Vec3d a = line.pointAt(s0), b = line.pointAt(s1);
-  double worst = tolerance;
+  double worst =
+      sagittaShare > 0.0 ? std::min(tolerance, sagittaShare * (b - a).length()) : tolerance;
   double worstParam = -1.0;
   const std::size_t n = line.pointCount();
   for (std::size_t i = 0; i < n; ++i) {
@@ -102,9 +103,9 @@ void addFarVertices(const PolylineParam& line, double s0, double s1, double tole
     }
   }
   if (worstParam < 0.0) return;
-  addFarVertices(line, s0, worstParam, tolerance, out);
+  addFarVertices(line, s0, worstParam, tolerance, out, sagittaShare);
   out.push_back(worstParam);
-  addFarVertices(line, worstParam, s1, tolerance, out);
+  addFarVertices(line, worstParam, s1, tolerance, out, sagittaShare);
 }
 
 }  // namespace voxremesh::extract

@@ -48,9 +48,10 @@ inline std::array<double, 3> toArray(const openvdb::math::Vec3d& p) {
 
 /// Appends to `out` the arc lengths of the polyline's points strictly between s0 and s1 (s0 < s1;
 /// on a closed polyline both may exceed the length) that lie farther than `tolerance` from the
-/// chord between the points at s0 and s1, chosen farthest first and recursively
-/// (Douglas-Peucker), so that the chords pass every point within the tolerance; ascending.
+/// chord between the points at s0 and s1 (and, where `sagittaShare` is positive, farther than
+/// that share of the chord's length), chosen farthest first and recursively (Douglas-Peucker),
+/// so that the chords pass every point within the limit; ascending.
 void addFarVertices(const PolylineParam& line, double s0, double s1, double tolerance,
-                    std::vector<double>& out);
+                    std::vector<double>& out, double sagittaShare = 0.0);
 
 }  // namespace voxremesh::extract

@@ -2,7 +2,6 @@
 // acceptance, else kept (remesh_part.h).
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <exception>
 #include <limits>
 #include <new>
@@ -28,10 +27,6 @@ constexpr double kJunctionNodeShare = 1e-6;
 constexpr double kNarrowChordShare = 0.125;
 /// A narrow sheet's edges across it may be this many times its width (or spacing) long.
 constexpr double kNarrowChordWidths = 3.0;
-/// An edge across a narrow sheet may lie this share of its length from it: an arc cut by chords
-/// of sagitta s and length c is 8/3 (s/c)^2 longer than they are, so a sheet curved across keeps
-/// its area within half the acceptance's limit (kAreaTolerance).
-const double kNarrowSagittaShare = std::sqrt(3.0 / 16.0 * kAreaTolerance);
 
 double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -67,7 +62,7 @@ extract::JunctionNodes sheetJunctionNodes(const Sheet& sheet, double spacing) {
     for (const PointIndex p : curve.points) world.points.push_back(sheet.points[p]);
     curves.push_back(std::move(world));
   }
-  return extract::JunctionNodes(curves, spacing, 0.2 * spacing);
+  return extract::JunctionNodes(curves, spacing, 0.2 * spacing, kChordSagittaShare);
 }
 
 /// One sheet's mesh from its boundary alone (narrow_sheet.h), nodes `spacing` apart along it;
@@ -83,7 +78,7 @@ QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
   narrow.spacing = spacing;
   narrow.tolerance = kNarrowChordShare * targetSize;
   narrow.maxChord = kNarrowChordWidths * std::max(sheetWidth(sheet), spacing);
-  narrow.sagittaShare = kNarrowSagittaShare;
+  narrow.sagittaShare = kChordSagittaShare;
   narrow.criteria = settings.optimizeSettings.quality;
   QuadMesh mesh = extract::meshNarrowSheet(
       sheet, surface, original,
