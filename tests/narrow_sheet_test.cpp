@@ -303,6 +303,31 @@ TEST(NarrowSheet, ARoundRingsLoopsGetNodesCloseEnoughToKeepItsArea) {
   EXPECT_GT(area(meshStrip(model, 1, 9.0, 1.125, 0.0, {}, 0.0433)), 0.99 * ringArea);
 }
 
+/// One triangular shell with the given corners in the plane z = 0.
+FeModel triangle(const std::array<double, 2>& a, const std::array<double, 2>& b,
+                 const std::array<double, 2>& c) {
+  FeModel model;
+  model.nodes = {{1, {a[0], a[1], 0.0}}, {2, {b[0], b[1], 0.0}}, {3, {c[0], c[1], 0.0}}};
+  model.shells.push_back({1, 1, {1, 2, 3, 0}, 3});
+  model.partOrAdd(1);
+  return model;
+}
+
+TEST(NarrowSheet, AThreeSidedPatchGetsThreeGridsRoundItsCentre) {
+  // An equilateral triangle of side 12 at spacing 3: four pieces a side, split in the middle and
+  // joined to the centre, three grids of 2 x 2 quads with angles of 60 to 120 degrees (a row
+  // across it fans out from its corners).
+  const QuadMesh mesh =
+      meshStrip(triangle({0.0, 0.0}, {12.0, 0.0}, {6.0, 6.0 * std::sqrt(3.0)}), 1, 3.0);
+  EXPECT_EQ(mesh.faces.size(), 12u);
+  EXPECT_EQ(triangleCount(mesh), 0u);
+  EXPECT_NEAR(area(mesh), 36.0 * std::sqrt(3.0), 1e-9);
+  for (const ElementQuality& quality : elementQualities(mesh)) {
+    EXPECT_GT(quality.minAngleDeg, 59.9);
+    EXPECT_LT(quality.maxAngleDeg, 120.1);
+  }
+}
+
 TEST(NarrowSheet, ASheetWithTwoHolesIsRefused) {
   FeModel model = strip(5, 3, 1.0, 1.0);
   model.shells.erase(model.shells.begin() + 8);  // row 1, i = 3

@@ -250,9 +250,10 @@ TEST(Pipeline, ANarrowStripAsksItsSeamForItsRowLength) {
 
 /// The report of one part of a deck remeshed alone at the default settings (the other parts
 /// kept).
-RemeshedPart remeshOnePart(const std::string& path, Id part) {
+RemeshedPart remeshOnePart(const std::string& path, Id part, double size = 0.0) {
   FeModel model = readDeck(path);
   RemeshSettings settings;
+  settings.targetSize = size;
   settings.parts = {part};
   const RemeshReport report = remeshDeck(model, settings);
   if (report.parts.size() != 1u)
@@ -281,6 +282,15 @@ TEST(Pipeline, SatelliteFramesKeepTheirPiecesAndHolesAtBothSizes) {
           << size << ": " << part.reason;
     }
   }
+}
+
+TEST(Pipeline, ASatelliteDishIsMeshedWithGridsInItsThreeSidedPieces) {
+  // ISat part 38 at size 4, twice the deck's: a dish cut by its fold lines into a band and four
+  // three-sided pieces, each narrower than three sizes. A row of faces across such a piece fans
+  // out from its corners (a fifth of the elements failed); three grids round its centre pass.
+  VOXREMESH_REQUIRE_SHARED_DECK(path, "ISat_Launch_Sm_Rgd.dat");
+  const RemeshedPart dish = remeshOnePart(path.string(), 38, 4.0);
+  EXPECT_NE(dish.status, PartStatus::Kept) << dish.reason;
 }
 
 TEST(Pipeline, SatelliteLegsAreRemeshedWithTheirPlatesStandingOnThem) {

@@ -77,6 +77,38 @@ std::vector<double> fractions(const std::vector<Vec3>& row) {
   return f;
 }
 
+/// The four sides of a grid of n1 x n2 quads: bottom and top (n1 + 1 points each, running the
+/// same way), left and right (n2 + 1 points each, from bottom to top), with their arc length
+/// fractions; corners shared.
+struct GridSides {
+  std::vector<Vec3> bottom, top, left, right;
+  std::vector<double> uBottom, uTop, vLeft, vRight;
+
+  GridSides(std::vector<Vec3> bottomRow, std::vector<Vec3> topRow, std::vector<Vec3> leftColumn,
+            std::vector<Vec3> rightColumn)
+      : bottom(std::move(bottomRow)),
+        top(std::move(topRow)),
+        left(std::move(leftColumn)),
+        right(std::move(rightColumn)),
+        uBottom(fractions(bottom)),
+        uTop(fractions(top)),
+        vLeft(fractions(left)),
+        vRight(fractions(right)) {}
+
+  /// Grid point (i, j) inside, 0 < i < n1 and 0 < j < n2: the transfinite (Coons) interpolation
+  /// of the sides at arc-length fractions, laid on the surface.
+  Vec3 inner(std::size_t i, std::size_t j, const ReferenceSurface& reference) const {
+    const std::size_t n1 = bottom.size() - 1;
+    const double vMean = 0.5 * (vLeft[j] + vRight[j]), uMean = 0.5 * (uBottom[i] + uTop[i]);
+    const double u = uBottom[i] * (1 - vMean) + uTop[i] * vMean;
+    const double v = vLeft[j] * (1 - uMean) + vRight[j] * uMean;
+    const Vec3 p = bottom[i] * (1 - v) + top[i] * v + left[j] * (1 - u) + right[j] * u -
+                   (bottom[0] * ((1 - u) * (1 - v)) + bottom[n1] * (u * (1 - v)) +
+                    top[0] * ((1 - u) * v) + top[n1] * (u * v));
+    return reference.closestPoint(p).point;
+  }
+};
+
 /// True when the quad is convex, agrees with the surface normal and stays within `tolerance` of
 /// the surface at its centre and edge midpoints, and, where `sagittaShare` is positive, within
 /// that share of the edge's length at an edge's midpoint and of the longer diagonal's at the
@@ -136,19 +168,9 @@ std::optional<MappedPatch> mappedPatch(const PolylineParam& loop,
     left.push_back(patch.loop[index(0, j)].point);
     right.push_back(patch.loop[index(n1, j)].point);
   }
-  const std::vector<double> uBottom = fractions(bottom), uTop = fractions(top);
-  const std::vector<double> vLeft = fractions(left), vRight = fractions(right);
-  for (std::size_t j = 1; j < n2; ++j) {
-    for (std::size_t i = 1; i < n1; ++i) {
-      const double vMean = 0.5 * (vLeft[j] + vRight[j]), uMean = 0.5 * (uBottom[i] + uTop[i]);
-      const double u = uBottom[i] * (1 - vMean) + uTop[i] * vMean;
-      const double v = vLeft[j] * (1 - uMean) + vRight[j] * uMean;
-      const Vec3 p = bottom[i] * (1 - v) + top[i] * v + left[j] * (1 - u) + right[j] * u -
-                     (bottom[0] * ((1 - u) * (1 - v)) + bottom[n1] * (u * (1 - v)) +
-                      top[0] * ((1 - u) * v) + top[n1] * (u * v));
-      patch.inner.push_back(reference.closestPoint(p).point);
-    }
-  }
+  const GridSides grid(bottom, top, left, right);
+  for (std::size_t j = 1; j < n2; ++j)
+    for (std::size_t i = 1; i < n1; ++i) patch.inner.push_back(grid.inner(i, j, reference));
   auto point = [&](std::uint32_t k) -> const Vec3& {
     return k < loopCount ? patch.loop[k].point : patch.inner[k - loopCount];
   };
@@ -160,6 +182,108 @@ std::optional<MappedPatch> mappedPatch(const PolylineParam& loop,
       if (!quadOnSurface(q, reference, normalAt, tolerance, sagittaShare)) return std::nullopt;
       patch.quads.push_back(quad);
     }
+  }
+  return patch;
+}
+
+namespace {
+
+/// Fills the inside of `grid` ((n1 + 1) x (n2 + 1) indices into the patch's loop nodes, then its
+/// inner nodes; its boundary given: row 0 and column n1 running with the loop) with nodes
+/// interpolated from its sides (GridSides) and appends its quads to `patch`. False when a quad is
+/// not convex or leaves the surface (quadOnSurface).
+bool addGrid(MappedPatch& patch, std::vector<std::vector<std::uint32_t>>& grid,
+             const ReferenceSurface& reference, const NormalAt& normalAt, double tolerance,
+             double sagittaShare) {
+  const std::size_t loopCount = patch.loop.size();
+  const auto point = [&](std::uint32_t index) -> const Vec3& {
+    return index < loopCount ? patch.loop[index].point : patch.inner[index - loopCount];
+  };
+  const std::size_t n1 = grid.size() - 1, n2 = grid.front().size() - 1;
+  std::vector<Vec3> bottom, top, left, right;
+  for (std::size_t i = 0; i <= n1; ++i) {
+    bottom.push_back(point(grid[i][0]));
+    top.push_back(point(grid[i][n2]));
+  }
+  for (std::size_t j = 0; j <= n2; ++j) {
+    left.push_back(point(grid[0][j]));
+    right.push_back(point(grid[n1][j]));
+  }
+  const GridSides sides(bottom, top, left, right);
+  for (std::size_t j = 1; j < n2; ++j)
+    for (std::size_t i = 1; i < n1; ++i) {
+      grid[i][j] = std::uint32_t(loopCount + patch.inner.size());
+      patch.inner.push_back(sides.inner(i, j, reference));
+    }
+  for (std::size_t j = 0; j < n2; ++j)
+    for (std::size_t i = 0; i < n1; ++i) {
+      const std::array<std::uint32_t, 4> quad{grid[i][j], grid[i + 1][j], grid[i + 1][j + 1],
+                                              grid[i][j + 1]};
+      const std::array<Vec3, 4> q{point(quad[0]), point(quad[1]), point(quad[2]), point(quad[3])};
+      if (!quadOnSurface(q, reference, normalAt, tolerance, sagittaShare)) return false;
+      patch.quads.push_back(quad);
+    }
+  return true;
+}
+
+}  // namespace
+
+std::optional<MappedPatch> triangularPatch(const std::vector<LoopNode>& nodes,
+                                           const ReferenceSurface& reference,
+                                           const NormalAt& normalAt, double tolerance,
+                                           double sagittaShare) {
+  const std::vector<std::size_t> corners = turningNodes(nodes);
+  if (corners.size() != 3) return std::nullopt;
+  const std::size_t n = nodes.size();
+  std::array<std::size_t, 3> pieces{};
+  for (std::size_t k = 0; k < 3; ++k) pieces[k] = (corners[(k + 1) % 3] + n - corners[k]) % n;
+  const std::size_t total = pieces[0] + pieces[1] + pieces[2];
+  if (total % 2 != 0) return std::nullopt;
+  MappedPatch patch;
+  patch.loop = nodes;
+  // Node j of side k (from corner k towards corner k + 1, j up to pieces[k]).
+  const auto onSide = [&](std::size_t k, std::size_t j) {
+    return std::uint32_t((corners[k] + j) % n);
+  };
+  // Side k is split `split[k]` pieces from its start; the row of nodes from the centre to that
+  // point has split[k + 1] pieces.
+  std::array<std::size_t, 3> split{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (2 * pieces[(k + 2) % 3] >= total) return std::nullopt;  // a split at a corner
+    split[k] = (total - 2 * pieces[(k + 2) % 3]) / 2;
+  }
+  Vec3 centre{0.0, 0.0, 0.0};
+  for (std::size_t k = 0; k < 3; ++k)
+    centre = centre + nodes[onSide(k, split[k])].point * (1.0 / 3.0);
+  patch.inner.push_back(reference.closestPoint(centre).point);
+  // spokes[k][t]: from the centre (t = 0) to the split point of side k.
+  std::array<std::vector<std::uint32_t>, 3> spokes;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::size_t count = split[(k + 1) % 3];
+    const Vec3& end = nodes[onSide(k, split[k])].point;
+    spokes[k].push_back(std::uint32_t(n));
+    for (std::size_t t = 1; t < count; ++t) {
+      spokes[k].push_back(std::uint32_t(n + patch.inner.size()));
+      const Vec3 p = patch.inner.front() + (end - patch.inner.front()) * (double(t) / count);
+      patch.inner.push_back(reference.closestPoint(p).point);
+    }
+    spokes[k].push_back(onSide(k, split[k]));
+  }
+  // The grid round corner k + 1: row 0 from side k's split point to the corner, column n1 from
+  // the corner along side k + 1 to its split point, the last row the spoke of side k + 1, column
+  // 0 the spoke of side k from its split point back to the centre.
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::size_t next = (k + 1) % 3, n1 = pieces[k] - split[k], n2 = split[next];
+    std::vector<std::vector<std::uint32_t>> cells(n1 + 1, std::vector<std::uint32_t>(n2 + 1));
+    for (std::size_t i = 0; i <= n1; ++i) {
+      cells[i][0] = onSide(k, split[k] + i);
+      cells[i][n2] = spokes[next][i];
+    }
+    for (std::size_t j = 0; j <= n2; ++j) {
+      cells[0][j] = spokes[k][n2 - j];
+      cells[n1][j] = onSide(next, j);
+    }
+    if (!addGrid(patch, cells, reference, normalAt, tolerance, sagittaShare)) return std::nullopt;
   }
   return patch;
 }

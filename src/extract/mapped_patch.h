@@ -56,6 +56,25 @@ std::optional<MappedPatch> mappedPatch(const PolylineParam& loop,
                                        const ReferenceSurface& reference, const NormalAt& normalAt,
                                        double tolerance, double sagittaShare);
 
+/// Meshes a patch whose loop turns by more than 45 degrees at exactly three of its nodes as three
+/// grids round a node at its centre (midpoint subdivision): each side is split at the node where
+/// the grids' opposite sides get as many pieces (side k at (n_k + n_{k+1} - n_{k+2}) / 2 pieces
+/// from its start, n the sides' pieces), and joined to the centre by a row of nodes laid on the
+/// surface. The loop's nodes are kept as they are.
+/// @param nodes      the nodes on the patch's loop, ascending arc length
+/// @param reference  the surface the inner nodes are laid on
+/// @param normalAt   the surface normal at a point, which every quad must agree with
+/// @param tolerance  largest distance of a quad's centre and edge midpoints from the surface
+/// @param sagittaShare  where positive, the largest such distance as a share of the edge's length
+///                   (the longer diagonal's at the centre)
+/// @return the grids (MappedPatch::loop is `nodes`), or nothing when the patch is not three-sided,
+///         its count of pieces is odd, a side is as long as the other two together, or a quad is
+///         not convex or leaves the surface
+std::optional<MappedPatch> triangularPatch(const std::vector<LoopNode>& nodes,
+                                           const ReferenceSurface& reference,
+                                           const NormalAt& normalAt, double tolerance,
+                                           double sagittaShare);
+
 /// The rows of mappedRing: both loops' nodes (a loop may have been spaced again), the nodes inside
 /// (row after row), and the quads (indices: the first loop's nodes, the second's, then the inner
 /// nodes), oriented like the surface.

@@ -265,28 +265,47 @@ void addRowFaces(QuadMesh& mesh, const std::vector<Vec3>& polygon,
                           face[3] == UINT32_MAX ? kNoCorner : pointOf[face[3]]});
 }
 
+/// The mesh of a grid over a patch (mapped_patch.h) bounded by `loopPoints`.
+QuadMesh gridMesh(const MappedPatch& grid, const std::vector<Vec3>& loopPoints) {
+  QuadMesh mesh;
+  mesh.curves.push_back({loopPoints, true, PointRole::Boundary});
+  for (const LoopNode& node : grid.loop) {
+    mesh.points.push_back(node.point);
+    mesh.constraints.push_back({node.role, 0});
+  }
+  for (const Vec3& p : grid.inner) {
+    mesh.points.push_back(p);
+    mesh.constraints.push_back({});
+  }
+  for (const auto& quad : grid.quads) mesh.faces.push_back({quad[0], quad[1], quad[2], quad[3]});
+  return mesh;
+}
+
+/// The faces of `mesh` failing one of the criteria (elementFailures).
+std::size_t failingFaces(const QuadMesh& mesh, const QualitySettings& criteria) {
+  const std::vector<ElementQuality> qualities = elementQualities(mesh);
+  std::size_t failing = 0;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    failing += elementFailures(qualities[f], cornerCount(mesh.faces[f]), criteria) != 0;
+  return failing;
+}
+
 /// The mesh of one patch from the nodes of its loop (see narrow_sheet.h): a grid where the patch
-/// is four-sided (mapped_patch.h), else one row across its boundary polygon (polygon_quads.h).
+/// is four-sided (mapped_patch.h); else one row across its boundary polygon (polygon_quads.h),
+/// or, for a three-sided patch, grids (triangularPatch) where no larger share of their elements
+/// fails a criterion than of the row's.
 QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& corner,
                   const QuadMesh& surface, const ReferenceSurface& reference,
                   const JunctionNodes& junctions, const NarrowSheetSettings& settings) {
   const std::vector<LoopNode> nodes = loopNodes(loopPoints, corner, junctions, settings, {});
-  QuadMesh mesh;
-  mesh.curves.push_back({loopPoints, true, PointRole::Boundary});
   const auto surfaceNormal = [&](const Vec3& p) { return normalAt(surface, reference, p); };
   if (const auto grid = mappedPatch(PolylineParam(loopPoints, true), nodes, reference,
-                                    surfaceNormal, settings.tolerance, settings.sagittaShare)) {
-    for (const LoopNode& node : grid->loop) {
-      mesh.points.push_back(node.point);
-      mesh.constraints.push_back({node.role, 0});
-    }
-    for (const Vec3& p : grid->inner) {
-      mesh.points.push_back(p);
-      mesh.constraints.push_back({});
-    }
-    for (const auto& quad : grid->quads) mesh.faces.push_back({quad[0], quad[1], quad[2], quad[3]});
-    return mesh;
-  }
+                                    surfaceNormal, settings.tolerance, settings.sagittaShare))
+    return gridMesh(*grid, loopPoints);
+  const auto grids =
+      triangularPatch(nodes, reference, surfaceNormal, settings.tolerance, settings.sagittaShare);
+  QuadMesh mesh;
+  mesh.curves.push_back({loopPoints, true, PointRole::Boundary});
   std::vector<Vec3> polygon;
   std::vector<std::uint32_t> pointOf;
   for (const LoopNode& node : nodes) {
@@ -295,7 +314,18 @@ QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& 
     mesh.points.push_back(node.point);
     mesh.constraints.push_back({node.role, 0});
   }
-  addRowFaces(mesh, polygon, pointOf, surface, reference, settings);
+  try {
+    addRowFaces(mesh, polygon, pointOf, surface, reference, settings);
+  } catch (const NarrowSheetRefusal&) {
+    if (!grids) throw;
+    return gridMesh(*grids, loopPoints);
+  }
+  if (grids) {
+    QuadMesh gridded = gridMesh(*grids, loopPoints);
+    if (failingFaces(gridded, settings.criteria) * mesh.faces.size() <=
+        failingFaces(mesh, settings.criteria) * gridded.faces.size())
+      return gridded;
+  }
   return mesh;
 }
 

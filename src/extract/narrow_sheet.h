@@ -14,7 +14,8 @@
 //   two nodes (Douglas-Peucker), and
 //   one more node where the count would be odd.
 // Faces: a disk whose loop turns sharply at exactly four nodes becomes a grid (mapped_patch.h,
-// nodes inside where it is more than one element wide); any other disk, and a ring joined into
+// nodes inside where it is more than one element wide); one that turns sharply at three, three
+// grids round its centre where they do better than a row; any other disk, and a ring joined into
 // one polygon by a bridge between its loops, gets one row of quads across (polygon_quads.h),
 // chords allowed where points sampled along them lie within `tolerance` of the sheet, faces
 // agreeing with the sheet's normals and chosen by the quality criteria. The patches are joined at
