@@ -9,6 +9,7 @@
 #include <set>
 #include <vector>
 
+#include "extract/mapped_patch.h"
 #include "extract/narrow_sheet.h"
 #include "extract/polygon_quads.h"
 #include "extract/sheet_patches.h"
@@ -326,6 +327,64 @@ TEST(NarrowSheet, AThreeSidedPatchGetsThreeGridsRoundItsCentre) {
     EXPECT_GT(quality.minAngleDeg, 59.9);
     EXPECT_LT(quality.maxAngleDeg, 120.1);
   }
+}
+
+TEST(MidpointPatch, ASixSidedPatchGetsAGridRoundEachCorner) {
+  // A regular hexagon of side 6 with two pieces a side: each side split in its middle and joined
+  // to the centre, one quad round each corner (a kite of 60 to 120 degrees).
+  const double pi = std::acos(-1.0);
+  QuadMesh surface;
+  surface.points.push_back({0.0, 0.0, 0.0});
+  std::vector<extract::LoopNode> nodes;
+  for (int k = 0; k < 12; ++k) {
+    const std::array<double, 3> corner{6.0 * std::cos((k / 2) * pi / 3.0),
+                                       6.0 * std::sin((k / 2) * pi / 3.0), 0.0};
+    const std::array<double, 3> next{6.0 * std::cos((k / 2 + 1) * pi / 3.0),
+                                     6.0 * std::sin((k / 2 + 1) * pi / 3.0), 0.0};
+    const double t = k % 2 == 0 ? 0.0 : 0.5;
+    nodes.push_back(
+        {3.0 * k,
+         {corner[0] + t * (next[0] - corner[0]), corner[1] + t * (next[1] - corner[1]), 0.0},
+         PointRole::Boundary,
+         false});
+    if (k % 2 == 0) {
+      surface.points.push_back(corner);
+      surface.faces.push_back(
+          {0, std::uint32_t(k / 2 + 1), std::uint32_t((k / 2 + 1) % 6 + 1), kNoCorner});
+    }
+  }
+  const ReferenceSurface reference(surface);
+  const auto up = [](const std::array<double, 3>&) { return std::array<double, 3>{0, 0, 1}; };
+  const auto grids = extract::midpointPatch(nodes, reference, up, 0.1, 0.0);
+  ASSERT_TRUE(grids.has_value());
+  EXPECT_EQ(grids->quads.size(), 6u);
+  EXPECT_EQ(grids->inner.size(), 1u);  // the centre
+  QuadMesh mesh;
+  for (const extract::LoopNode& node : grids->loop) mesh.points.push_back(node.point);
+  for (const auto& p : grids->inner) mesh.points.push_back(p);
+  for (const auto& q : grids->quads) mesh.faces.push_back({q[0], q[1], q[2], q[3]});
+  EXPECT_NEAR(area(mesh), 54.0 * std::sqrt(3.0), 1e-9);
+  for (const ElementQuality& quality : elementQualities(mesh)) {
+    EXPECT_NEAR(quality.minAngleDeg, 60.0, 1e-6);
+    EXPECT_NEAR(quality.maxAngleDeg, 120.0, 1e-6);
+  }
+}
+
+TEST(MidpointPatch, FourSidesWithDifferentCountsOppositeHaveNoSplit) {
+  // A square with 2, 2, 2 and 4 pieces: every second side's splits must add up to the side
+  // between them, which 2 and 4 opposite cannot.
+  QuadMesh surface;
+  surface.points = {{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}};
+  surface.faces = {{0, 1, 2, 3}};
+  std::vector<extract::LoopNode> nodes;
+  const std::vector<std::array<double, 3>> loop{{0, 0, 0}, {2, 0, 0}, {4, 0, 0}, {4, 2, 0},
+                                                {4, 4, 0}, {2, 4, 0}, {0, 4, 0}, {0, 3, 0},
+                                                {0, 2, 0}, {0, 1, 0}};
+  for (std::size_t k = 0; k < loop.size(); ++k)
+    nodes.push_back({double(k), loop[k], PointRole::Boundary, false});
+  const ReferenceSurface reference(surface);
+  const auto up = [](const std::array<double, 3>&) { return std::array<double, 3>{0, 0, 1}; };
+  EXPECT_FALSE(extract::midpointPatch(nodes, reference, up, 0.1, 0.0).has_value());
 }
 
 TEST(NarrowSheet, ASheetWithTwoHolesIsRefused) {

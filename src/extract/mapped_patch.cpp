@@ -228,38 +228,83 @@ bool addGrid(MappedPatch& patch, std::vector<std::vector<std::uint32_t>>& grid,
 
 }  // namespace
 
-std::optional<MappedPatch> triangularPatch(const std::vector<LoopNode>& nodes,
-                                           const ReferenceSurface& reference,
-                                           const NormalAt& normalAt, double tolerance,
-                                           double sagittaShare) {
+namespace {
+
+/// The midpoint subdivision's split of each side (see midpointPatch): per side k, the pieces
+/// m_k from its start to its split point, such that m_{k+2} = n_k - m_k round the patch (n:
+/// `pieces`) and 1 <= m_k < n_k; empty when there is none. The relation links every second side:
+/// one cycle through all sides when their count is odd, two when it is even; a cycle whose
+/// relation leaves m free takes the value that keeps the splits farthest from the corners.
+std::vector<std::size_t> midpointSplits(const std::vector<std::size_t>& pieces) {
+  const std::size_t count = pieces.size();
+  std::vector<long> split(count, 0);
+  for (std::size_t start = 0; start < (count % 2 == 0 ? 2 : 1); ++start) {
+    // Along the cycle m = offset + sign * x, x = the split of side `start`.
+    std::vector<std::size_t> cycle;
+    std::vector<long> offset, sign;
+    long a = 0, b = 1;
+    std::size_t k = start;
+    do {
+      cycle.push_back(k);
+      offset.push_back(a);
+      sign.push_back(b);
+      a = long(pieces[k]) - a;
+      b = -b;
+      k = (k + 2) % count;
+    } while (k != start);
+    std::vector<long> candidates;
+    if (b == -1) {
+      if (a % 2 != 0) return {};
+      candidates.push_back(a / 2);  // x = a - x
+    } else {
+      if (a != 0) return {};
+      for (long x = 1; x < long(pieces[start]); ++x) candidates.push_back(x);
+    }
+    long best = -1, bestX = 0;
+    for (const long x : candidates) {
+      long slack = std::numeric_limits<long>::max();
+      for (std::size_t i = 0; i < cycle.size(); ++i) {
+        const long m = offset[i] + sign[i] * x;
+        slack = std::min({slack, m - 1, long(pieces[cycle[i]]) - 1 - m});
+      }
+      if (slack > best) best = slack, bestX = x;
+    }
+    if (best < 0) return {};
+    for (std::size_t i = 0; i < cycle.size(); ++i) split[cycle[i]] = offset[i] + sign[i] * bestX;
+  }
+  return std::vector<std::size_t>(split.begin(), split.end());
+}
+
+}  // namespace
+
+std::optional<MappedPatch> midpointPatch(const std::vector<LoopNode>& nodes,
+                                         const ReferenceSurface& reference,
+                                         const NormalAt& normalAt, double tolerance,
+                                         double sagittaShare) {
   const std::vector<std::size_t> corners = turningNodes(nodes);
-  if (corners.size() != 3) return std::nullopt;
-  const std::size_t n = nodes.size();
-  std::array<std::size_t, 3> pieces{};
-  for (std::size_t k = 0; k < 3; ++k) pieces[k] = (corners[(k + 1) % 3] + n - corners[k]) % n;
-  const std::size_t total = pieces[0] + pieces[1] + pieces[2];
-  if (total % 2 != 0) return std::nullopt;
+  const std::size_t sides = corners.size(), n = nodes.size();
+  if (sides < 3) return std::nullopt;
+  std::vector<std::size_t> pieces(sides);
+  for (std::size_t k = 0; k < sides; ++k)
+    pieces[k] = (corners[(k + 1) % sides] + n - corners[k]) % n;
+  // Side k is split `split[k]` pieces from its start; the row of nodes from the centre to that
+  // point has split[k + 1] pieces.
+  const std::vector<std::size_t> split = midpointSplits(pieces);
+  if (split.empty()) return std::nullopt;
   MappedPatch patch;
   patch.loop = nodes;
   // Node j of side k (from corner k towards corner k + 1, j up to pieces[k]).
   const auto onSide = [&](std::size_t k, std::size_t j) {
     return std::uint32_t((corners[k] + j) % n);
   };
-  // Side k is split `split[k]` pieces from its start; the row of nodes from the centre to that
-  // point has split[k + 1] pieces.
-  std::array<std::size_t, 3> split{};
-  for (std::size_t k = 0; k < 3; ++k) {
-    if (2 * pieces[(k + 2) % 3] >= total) return std::nullopt;  // a split at a corner
-    split[k] = (total - 2 * pieces[(k + 2) % 3]) / 2;
-  }
   Vec3 centre{0.0, 0.0, 0.0};
-  for (std::size_t k = 0; k < 3; ++k)
-    centre = centre + nodes[onSide(k, split[k])].point * (1.0 / 3.0);
+  for (std::size_t k = 0; k < sides; ++k)
+    centre = centre + nodes[onSide(k, split[k])].point * (1.0 / double(sides));
   patch.inner.push_back(reference.closestPoint(centre).point);
   // spokes[k][t]: from the centre (t = 0) to the split point of side k.
-  std::array<std::vector<std::uint32_t>, 3> spokes;
-  for (std::size_t k = 0; k < 3; ++k) {
-    const std::size_t count = split[(k + 1) % 3];
+  std::vector<std::vector<std::uint32_t>> spokes(sides);
+  for (std::size_t k = 0; k < sides; ++k) {
+    const std::size_t count = split[(k + 1) % sides];
     const Vec3& end = nodes[onSide(k, split[k])].point;
     spokes[k].push_back(std::uint32_t(n));
     for (std::size_t t = 1; t < count; ++t) {
@@ -272,8 +317,8 @@ std::optional<MappedPatch> triangularPatch(const std::vector<LoopNode>& nodes,
   // The grid round corner k + 1: row 0 from side k's split point to the corner, column n1 from
   // the corner along side k + 1 to its split point, the last row the spoke of side k + 1, column
   // 0 the spoke of side k from its split point back to the centre.
-  for (std::size_t k = 0; k < 3; ++k) {
-    const std::size_t next = (k + 1) % 3, n1 = pieces[k] - split[k], n2 = split[next];
+  for (std::size_t k = 0; k < sides; ++k) {
+    const std::size_t next = (k + 1) % sides, n1 = pieces[k] - split[k], n2 = split[next];
     std::vector<std::vector<std::uint32_t>> cells(n1 + 1, std::vector<std::uint32_t>(n2 + 1));
     for (std::size_t i = 0; i <= n1; ++i) {
       cells[i][0] = onSide(k, split[k] + i);

@@ -56,24 +56,26 @@ std::optional<MappedPatch> mappedPatch(const PolylineParam& loop,
                                        const ReferenceSurface& reference, const NormalAt& normalAt,
                                        double tolerance, double sagittaShare);
 
-/// Meshes a patch whose loop turns by more than 45 degrees at exactly three of its nodes as three
-/// grids round a node at its centre (midpoint subdivision): each side is split at the node where
-/// the grids' opposite sides get as many pieces (side k at (n_k + n_{k+1} - n_{k+2}) / 2 pieces
-/// from its start, n the sides' pieces), and joined to the centre by a row of nodes laid on the
-/// surface. The loop's nodes are kept as they are.
+/// Meshes a patch whose loop turns by more than 45 degrees at three or more of its nodes (its
+/// corners) as one grid round each corner, all meeting at a node at its centre (midpoint
+/// subdivision): each side is split at a node, and the split points are joined to the centre by
+/// rows of nodes laid on the surface, so that the grid round a corner has as many pieces on its
+/// opposite sides: side k split m_k pieces from its start with m_{k+2} = n_k - m_k (n_k: its
+/// pieces), for three sides m_k = (n_k + n_{k+1} - n_{k+2}) / 2. The loop's nodes are kept.
 /// @param nodes      the nodes on the patch's loop, ascending arc length
 /// @param reference  the surface the inner nodes are laid on
 /// @param normalAt   the surface normal at a point, which every quad must agree with
 /// @param tolerance  largest distance of a quad's centre and edge midpoints from the surface
 /// @param sagittaShare  where positive, the largest such distance as a share of the edge's length
 ///                   (the longer diagonal's at the centre)
-/// @return the grids (MappedPatch::loop is `nodes`), or nothing when the patch is not three-sided,
-///         its count of pieces is odd, a side is as long as the other two together, or a quad is
-///         not convex or leaves the surface
-std::optional<MappedPatch> triangularPatch(const std::vector<LoopNode>& nodes,
-                                           const ReferenceSurface& reference,
-                                           const NormalAt& normalAt, double tolerance,
-                                           double sagittaShare);
+/// @return the grids (MappedPatch::loop is `nodes`), or nothing when the patch has fewer than
+///         three corners, no split point lies strictly inside every side (a side as long as the
+///         others together, an odd count of pieces; four sides with different counts on
+///         opposite sides), or a quad is not convex or leaves the surface
+std::optional<MappedPatch> midpointPatch(const std::vector<LoopNode>& nodes,
+                                         const ReferenceSurface& reference,
+                                         const NormalAt& normalAt, double tolerance,
+                                         double sagittaShare);
 
 /// The rows of mappedRing: both loops' nodes (a loop may have been spaced again), the nodes inside
 /// (row after row), and the quads (indices: the first loop's nodes, the second's, then the inner

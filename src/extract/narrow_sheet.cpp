@@ -292,8 +292,8 @@ std::size_t failingFaces(const QuadMesh& mesh, const QualitySettings& criteria) 
 
 /// The mesh of one patch from the nodes of its loop (see narrow_sheet.h): a grid where the patch
 /// is four-sided (mapped_patch.h); else one row across its boundary polygon (polygon_quads.h),
-/// or, for a three-sided patch, grids (triangularPatch) where no larger share of their elements
-/// fails a criterion than of the row's.
+/// or grids round its centre (midpointPatch) where no larger share of their elements fails a
+/// criterion than of the row's.
 QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& corner,
                   const QuadMesh& surface, const ReferenceSurface& reference,
                   const JunctionNodes& junctions, const NarrowSheetSettings& settings) {
@@ -303,7 +303,7 @@ QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& 
                                     surfaceNormal, settings.tolerance, settings.sagittaShare))
     return gridMesh(*grid, loopPoints);
   const auto grids =
-      triangularPatch(nodes, reference, surfaceNormal, settings.tolerance, settings.sagittaShare);
+      midpointPatch(nodes, reference, surfaceNormal, settings.tolerance, settings.sagittaShare);
   QuadMesh mesh;
   mesh.curves.push_back({loopPoints, true, PointRole::Boundary});
   std::vector<Vec3> polygon;

@@ -11,16 +11,16 @@
 // - on free stretches, first the points facing nodes already placed across the patch (where the
 //   loop runs against the node's stretch), then nodes evenly spaced about `spacing` apart, then
 //   loop points farther than `tolerance` (or `sagittaShare` of its length) from the chord between
-//   two nodes (Douglas-Peucker), and
-//   one more node where the count would be odd.
+//   two nodes (Douglas-Peucker), and one more node where the count would be odd.
 // Faces: a disk whose loop turns sharply at exactly four nodes becomes a grid (mapped_patch.h,
-// nodes inside where it is more than one element wide); one that turns sharply at three, three
-// grids round its centre where they do better than a row; any other disk, and a ring joined into
-// one polygon by a bridge between its loops, gets one row of quads across (polygon_quads.h),
-// chords allowed where points sampled along them lie within `tolerance` of the sheet, faces
-// agreeing with the sheet's normals and chosen by the quality criteria. The patches are joined at
-// their shared junction nodes. The mesh is of the same kind as an extracted one: nodes with role
-// Corner, Junction or Boundary on their loop's curve, grid nodes inside Free.
+// nodes inside where it is more than one element wide); one that turns sharply at three or more,
+// a grid round each corner meeting at its centre where they do better than a row; any other
+// disk, and a ring joined into one polygon by a bridge between its loops, gets one row of quads
+// across (polygon_quads.h), chords allowed where points sampled along them lie within
+// `tolerance` of the sheet, faces agreeing with the sheet's normals and chosen by the quality
+// criteria. The patches are joined at their shared junction nodes. The mesh is of the same kind
+// as an extracted one: nodes with role Corner, Junction or Boundary on their loop's curve, grid
+// nodes inside Free.
 #pragma once
 
 #include <stdexcept>
