@@ -128,66 +128,6 @@ bool quadOnSurface(const std::array<Vec3, 4>& q, const ReferenceSurface& referen
   return true;
 }
 
-}  // namespace
-
-std::optional<MappedPatch> mappedPatch(const PolylineParam& loop,
-                                       const std::vector<LoopNode>& nodes,
-                                       const ReferenceSurface& reference, const NormalAt& normalAt,
-                                       double tolerance, double sagittaShare) {
-  if (nodes.size() < 4) return std::nullopt;
-  const std::vector<std::size_t> corners = turningNodes(nodes);
-  if (corners.size() != 4) return std::nullopt;
-  std::array<Side, 4> sides;
-  for (std::size_t k = 0; k < 4; ++k)
-    for (std::size_t i = corners[k];; i = (i + 1) % nodes.size()) {
-      sides[k].push_back(nodes[i]);
-      if (i == corners[(k + 1) % 4]) break;
-    }
-  if (!matchCounts(loop, sides[0], sides[2]) || !matchCounts(loop, sides[1], sides[3]))
-    return std::nullopt;
-  const std::size_t n1 = sides[0].size() - 1, n2 = sides[1].size() - 1;
-
-  MappedPatch patch;
-  for (const Side& side : sides) patch.loop.insert(patch.loop.end(), side.begin(), side.end() - 1);
-  const std::size_t loopCount = patch.loop.size();
-  // Grid point (i, j): bottom row sides[0], right column sides[1], top row sides[2] reversed,
-  // left column sides[3] reversed; inner points after the loop's.
-  auto index = [&](std::size_t i, std::size_t j) -> std::uint32_t {
-    if (j == 0) return std::uint32_t(i);
-    if (i == n1) return std::uint32_t(n1 + j);
-    if (j == n2) return std::uint32_t(n1 + n2 + (n1 - i));
-    if (i == 0) return std::uint32_t((2 * n1 + n2 + (n2 - j)) % loopCount);
-    return std::uint32_t(loopCount + (j - 1) * (n1 - 1) + (i - 1));
-  };
-  std::vector<Vec3> bottom, top, left, right;
-  for (std::size_t i = 0; i <= n1; ++i) {
-    bottom.push_back(patch.loop[index(i, 0)].point);
-    top.push_back(patch.loop[index(i, n2)].point);
-  }
-  for (std::size_t j = 0; j <= n2; ++j) {
-    left.push_back(patch.loop[index(0, j)].point);
-    right.push_back(patch.loop[index(n1, j)].point);
-  }
-  const GridSides grid(bottom, top, left, right);
-  for (std::size_t j = 1; j < n2; ++j)
-    for (std::size_t i = 1; i < n1; ++i) patch.inner.push_back(grid.inner(i, j, reference));
-  auto point = [&](std::uint32_t k) -> const Vec3& {
-    return k < loopCount ? patch.loop[k].point : patch.inner[k - loopCount];
-  };
-  for (std::size_t j = 0; j < n2; ++j) {
-    for (std::size_t i = 0; i < n1; ++i) {
-      const std::array<std::uint32_t, 4> quad{index(i, j), index(i + 1, j), index(i + 1, j + 1),
-                                              index(i, j + 1)};
-      const std::array<Vec3, 4> q{point(quad[0]), point(quad[1]), point(quad[2]), point(quad[3])};
-      if (!quadOnSurface(q, reference, normalAt, tolerance, sagittaShare)) return std::nullopt;
-      patch.quads.push_back(quad);
-    }
-  }
-  return patch;
-}
-
-namespace {
-
 /// Fills the inside of `grid` ((n1 + 1) x (n2 + 1) indices into the patch's loop nodes, then its
 /// inner nodes; its boundary given: row 0 and column n1 running with the loop) with nodes
 /// interpolated from its sides (GridSides) and appends its quads to `patch`. False when a quad is
@@ -227,6 +167,41 @@ bool addGrid(MappedPatch& patch, std::vector<std::vector<std::uint32_t>>& grid,
 }
 
 }  // namespace
+
+std::optional<MappedPatch> mappedPatch(const PolylineParam& loop,
+                                       const std::vector<LoopNode>& nodes,
+                                       const ReferenceSurface& reference, const NormalAt& normalAt,
+                                       double tolerance, double sagittaShare) {
+  if (nodes.size() < 4) return std::nullopt;
+  const std::vector<std::size_t> corners = turningNodes(nodes);
+  if (corners.size() != 4) return std::nullopt;
+  std::array<Side, 4> sides;
+  for (std::size_t k = 0; k < 4; ++k)
+    for (std::size_t i = corners[k];; i = (i + 1) % nodes.size()) {
+      sides[k].push_back(nodes[i]);
+      if (i == corners[(k + 1) % 4]) break;
+    }
+  if (!matchCounts(loop, sides[0], sides[2]) || !matchCounts(loop, sides[1], sides[3]))
+    return std::nullopt;
+  const std::size_t n1 = sides[0].size() - 1, n2 = sides[1].size() - 1;
+
+  MappedPatch patch;
+  for (const Side& side : sides) patch.loop.insert(patch.loop.end(), side.begin(), side.end() - 1);
+  const std::size_t loopCount = patch.loop.size();
+  // Grid point (i, j): bottom row sides[0], right column sides[1], top row sides[2] reversed,
+  // left column sides[3] reversed.
+  std::vector<std::vector<std::uint32_t>> cells(n1 + 1, std::vector<std::uint32_t>(n2 + 1));
+  for (std::size_t i = 0; i <= n1; ++i) {
+    cells[i][0] = std::uint32_t(i);
+    cells[i][n2] = std::uint32_t(n1 + n2 + (n1 - i));
+  }
+  for (std::size_t j = 0; j <= n2; ++j) {
+    cells[n1][j] = std::uint32_t(n1 + j);
+    cells[0][j] = std::uint32_t((2 * n1 + n2 + (n2 - j)) % loopCount);
+  }
+  if (!addGrid(patch, cells, reference, normalAt, tolerance, sagittaShare)) return std::nullopt;
+  return patch;
+}
 
 namespace {
 
