@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "geometry/chord_limit.h"
+
 namespace voxremesh::extract {
 
 namespace {
@@ -97,8 +99,7 @@ struct Walk {
 void addFarPoints(const Walk& walk, const CurveNode& x, const CurveNode& y, double tolerance,
                   double sagittaShare, std::vector<CurveNode>& out) {
   const Point3 a = walk.position(x), b = walk.position(y);
-  double worst =
-      sagittaShare > 0.0 ? std::min(tolerance, sagittaShare * distance(a, b)) : tolerance;
+  double worst = geom::chordLimit(tolerance, sagittaShare, distance(a, b));
   double worstParam = 0.0;
   std::size_t worstPoint = SIZE_MAX;
   const std::size_t n = walk.points.size();

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "extract/polygon_quads.h"
+#include "geometry/chord_limit.h"
 #include "geometry/vec3.h"
 
 namespace voxremesh::extract {
@@ -116,9 +117,7 @@ struct GridSides {
 bool quadOnSurface(const std::array<Vec3, 4>& q, const ReferenceSurface& reference,
                    const NormalAt& normalAt, double tolerance, double sagittaShare) {
   const auto within = [&](const Vec3& p, double length) {
-    const double limit =
-        sagittaShare > 0.0 ? std::min(tolerance, sagittaShare * length) : tolerance;
-    return reference.closestPoint(p).distance <= limit;
+    return reference.closestPoint(p).distance <= geom::chordLimit(tolerance, sagittaShare, length);
   };
   const Vec3 centre = (q[0] + q[1] + q[2] + q[3]) * 0.25;
   if (!convexQuad(q, normalAt(centre))) return false;

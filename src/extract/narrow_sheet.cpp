@@ -11,6 +11,7 @@
 #include "extract/polygon_quads.h"
 #include "extract/polyline_param.h"
 #include "extract/sheet_patches.h"
+#include "geometry/chord_limit.h"
 #include "geometry/vec3.h"
 
 namespace voxremesh::extract {
@@ -220,7 +221,7 @@ std::vector<LoopNode> loopNodes(const std::vector<Vec3>& points, const std::vect
 /// surface.
 bool chordOnSurface(const Vec3& a, const Vec3& b, const ReferenceSurface& reference, double spacing,
                     double tolerance, double sagittaShare) {
-  if (sagittaShare > 0.0) tolerance = std::min(tolerance, sagittaShare * distance(a, b));
+  tolerance = geom::chordLimit(tolerance, sagittaShare, distance(a, b));
   const long samples = std::max(4L, long(std::ceil(distance(a, b) / (0.25 * spacing))));
   for (long q = 1; q < samples; ++q)
     if (reference.closestPoint(a + (b - a) * (double(q) / double(samples))).distance > tolerance)

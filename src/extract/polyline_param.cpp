@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/chord_limit.h"
+
 namespace voxremesh::extract {
 
 using openvdb::math::Vec3d;
@@ -87,8 +89,7 @@ void addFarVertices(const PolylineParam& line, double s0, double s1, double tole
                     std::vector<double>& out, double sagittaShare) {
   const double length = line.length();
   const Vec3d a = line.pointAt(s0), b = line.pointAt(s1);
-  double worst =
-      sagittaShare > 0.0 ? std::min(tolerance, sagittaShare * (b - a).length()) : tolerance;
+  double worst = geom::chordLimit(tolerance, sagittaShare, (b - a).length());
   double worstParam = -1.0;
   const std::size_t n = line.pointCount();
   for (std::size_t i = 0; i < n; ++i) {
