@@ -1008,6 +1008,42 @@ TEST(Sheets, JunctionCurvesEndWhereTheSeamChangesItsPartner) {
   }
 }
 
+TEST(Sheets, JunctionCurvesEndWhereASheetAlongTheSeamEnds) {
+  // A web (part 2) stands on the whole line y = 3 of an 8 x 6 plate (part 1) whose quads of
+  // x >= 5 above the line are cut away: along x = 0..5 the line has the plate on both sides and
+  // the web, along x = 5..8 the plate on one side only. Every curve along the line ends at
+  // x = 5, where the upper sheet's ends, so that the lower sheet, the upper one and the web
+  // sample the same pieces (one curve 0..8 on the lower sheet placed its nodes along 0..5
+  // otherwise than the upper sheet's curve 0..5 did).
+  FeModel m;
+  m.partOrAdd(1, "plate");
+  m.partOrAdd(2, "web");
+  addSheet(
+      m, 1, 1, 8, 6,
+      [](int i, int j) {
+        return Vec3{double(i), double(j), 0.0};
+      },
+      [](int i, int j) { return i >= 5 && j >= 3; });
+  for (int i = 0; i <= 8; ++i) addNode(m, 1001 + i, double(i), 3.0, 1.0);
+  for (int i = 0; i < 8; ++i)
+    addShell(m, nextShellId(m), 2, {Id(28 + i), Id(29 + i), Id(1002 + i), Id(1001 + i)});
+  const std::vector<Id> stem{28, 29, 30, 31, 32, 33}, rest{33, 34, 35, 36};
+  for (const Id part : {1, 2})
+    for (const Sheet& sheet : buildSheets(m, part)) {
+      std::vector<std::vector<Id>> along;  // the curves on the line y = 3
+      for (const Polyline& curve : sheet.junctionCurves) {
+        std::vector<Id> ids = nodeIds(sheet, curve);
+        if (ids.front() > ids.back()) std::reverse(ids.begin(), ids.end());
+        if (ids.front() >= 28 && ids.back() <= 36) along.push_back(ids);
+      }
+      std::sort(along.begin(), along.end());
+      const bool upper = part == 1 && sheet.faces.size() == 15;
+      const std::vector<std::vector<Id>> expected =
+          upper ? std::vector<std::vector<Id>>{stem} : std::vector<std::vector<Id>>{stem, rest};
+      EXPECT_EQ(along, expected) << "part " << part << ", " << sheet.faces.size() << " faces";
+    }
+}
+
 TEST(Sheets, ASeamIsWhereTheOtherPartRunsAlongNotWhereItTouchesBothEnds) {
   // Part 1, a 5 x 2 plate (node (i, j): 1 + 6 j + i). Part 2 stands on its rows j = 0 and j = 1
   // (two walls, a hat section's flanges on a skin): the plate's edges from row 0 to row 1 have

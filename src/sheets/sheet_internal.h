@@ -83,8 +83,9 @@ struct ModelContext {
   /// True when junction curves must end at node v (model node index), whichever part or sheet
   /// they are found from: the model's seam edges at v (edges of three or more shells, of shells
   /// of two or more parts, or cuts) are not exactly two, or the two are edges of different
-  /// sets of parts. Every part meeting at v then cuts its curves there, so that both sides of a
-  /// seam sample the same pieces between the same ends.
+  /// sets of parts or of different numbers of shells (a sheet of one of the parts ends at v, as
+  /// where a T's stem ends on one side of it). Every part meeting at v then cuts its curves there,
+  /// so that both sides of a seam sample the same pieces between the same ends.
   bool seamStop(Index v) const;
 };
 

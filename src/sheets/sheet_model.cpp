@@ -80,7 +80,8 @@ bool ModelContext::seamStop(Index v) const {
     std::sort(e.entries.begin(), e.entries.end());
     seams.push_back(&e);
   }
-  return seams.size() != 2 || seams[0]->entries != seams[1]->entries;
+  return seams.size() != 2 || seams[0]->entries != seams[1]->entries ||
+         seams[0]->shells != seams[1]->shells;
 }
 
 ModelContext makeModelContext(const FeModel& model) {
