@@ -2,10 +2,13 @@
 // the fallback of remeshDeck (a part that cannot be meshed is kept, the rest of the deck written).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
+#include "pipeline/half_pass.h"
 #include "pipeline/remesh_part.h"
 #include "support/test_support.h"
 #include "support/unit_grid.h"
@@ -187,3 +190,68 @@ TEST(PartAcceptance, APartThatCannotBeMeshedIsKeptAndTheRestWritten) {
 }
 
 }  // namespace
+
+namespace {
+
+/// Plans 0..n-1 joined in a chain (plan i shares nodes with i - 1 and i + 1).
+std::vector<std::vector<std::size_t>> chain(std::size_t n) {
+  std::vector<std::vector<std::size_t>> neighbours(n);
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    neighbours[i].push_back(i + 1);
+    neighbours[i + 1].push_back(i);
+  }
+  for (std::vector<std::size_t>& list : neighbours) std::sort(list.begin(), list.end());
+  return neighbours;
+}
+
+/// A round's result for `statuses`, each part's reason saying `round`.
+pipeline::RoundResult roundOf(const std::vector<PartStatus>& statuses, const std::string& round) {
+  pipeline::RoundResult result;
+  for (std::size_t i = 0; i < statuses.size(); ++i) {
+    RemeshedPart part;
+    part.plan.part = Id(i + 1);
+    part.plan.targetSize = 1.0;
+    part.status = statuses[i];
+    part.reason = round;
+    result.plans.push_back(part.plan);
+    result.parts.push_back(part);
+    result.meshes.emplace_back();
+  }
+  return result;
+}
+
+}  // namespace
+
+TEST(HalfPass, GroupsAreTheHalvedPartsTheirNeighboursAndTheNeighboursSeamsFollowing) {
+  // Eight parts in a chain; parts 1 and 6 are halved, part 7 is not redone (kept from the start).
+  // Part 1 refines its seams with 0 and 2, and 2's seam with 3 follows: {0, 1, 2, 3}. Part 6
+  // refines its seam with 5, whose seam with 4 follows: {4, 5, 6}. The seam between 3 and 4 is
+  // changed by neither, so the two groups stay apart.
+  const std::vector<std::uint8_t> halved{0, 1, 0, 0, 0, 0, 1, 0};
+  const std::vector<std::uint8_t> redone{1, 1, 1, 1, 1, 1, 1, 0};
+  const std::size_t none = pipeline::kNoGroup;
+  EXPECT_EQ(pipeline::halvingGroups(chain(8), halved, redone),
+            (std::vector<std::size_t>{0, 0, 0, 0, 4, 4, 4, none}));
+}
+
+TEST(HalfPass, AGroupsResultsStayWhenMoreOfItsPartsPassAndNoneIsLost) {
+  // Two groups, {0, 1} and {2, 3}. At half the size part 0 passes and 1 still does: that group
+  // takes the half pass's results. Part 2 passes too but 3, which passed at the full size, is
+  // lost: that group keeps the full size's.
+  using S = PartStatus;
+  std::vector<std::vector<std::size_t>> neighbours = chain(4);
+  neighbours[1] = {0};
+  neighbours[2] = {3};
+  pipeline::RoundResult full = roundOf({S::Kept, S::Remeshed, S::Kept, S::Remeshed}, "full");
+  pipeline::RoundResult half = roundOf({S::Retried, S::Remeshed, S::Retried, S::Kept}, "half");
+  pipeline::takeHalvedGroups(full, half, {0, 0, 2, 2}, neighbours);
+  std::vector<std::string> taken, left;
+  for (std::size_t i = 0; i < 4; ++i) {
+    taken.push_back(full.parts[i].reason);
+    left.push_back(half.parts[i].reason);
+  }
+  EXPECT_EQ(taken, (std::vector<std::string>{"half", "half", "full", "full"}));
+  EXPECT_EQ(left, (std::vector<std::string>{"full", "full", "half", "half"}));
+  EXPECT_EQ(full.parts[0].status, S::Retried);
+  EXPECT_EQ(full.parts[3].status, S::Remeshed);
+}

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <map>
@@ -19,6 +20,7 @@
 #include "io/atomic_file.h"
 #include "io/text_scan.h"
 #include "json/json.h"
+#include "pipeline/half_pass.h"
 #include "pipeline/remesh_part.h"
 #include "pipeline/seam_spacing.h"
 #include "voxremesh/deck_assembly.h"
@@ -32,10 +34,6 @@ namespace {
 double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
-
-/// A boundary point of one part's new mesh closer than this share of the target size to the inside
-/// of an edge of a neighbour's new mesh hangs on it: their seam is not conforming there.
-constexpr double kHangingShare = 0.005;
 
 /// Nodes of a part closer than this share of its target size are one node of its surface: a
 /// slit between them is no boundary a remesh could keep.
@@ -233,36 +231,17 @@ void describeHalved(RemeshedPart& part, const std::string& fullSizeReason) {
                 (part.reason.empty() ? "" : "; " + part.reason);
 }
 
-/// Whether `after` keeps every part `before` accepted and accepts more.
-bool acceptsMore(const std::vector<RemeshedPart>& before, const std::vector<RemeshedPart>& after) {
-  std::size_t gained = 0;
-  for (std::size_t i = 0; i < before.size(); ++i) {
-    const bool was = before[i].status != PartStatus::Kept, is = after[i].status != PartStatus::Kept;
-    if (was && !is) return false;
-    if (is && !was) ++gained;
-  }
-  return gained > 0;
-}
-
-/// Over the pairs of accepted parts that share nodes, the boundary points of one hanging on the
-/// other's boundary (hangingPoints, within kHangingShare of the smaller target size).
-std::size_t hangingSeamPoints(const std::vector<QuadMesh>& meshes,
-                              const std::vector<RemeshedPart>& parts,
-                              const std::vector<FeModel>& models,
-                              const std::vector<PartPlan>& plans) {
-  std::unordered_map<Id, std::size_t> planOf;
-  for (std::size_t i = 0; i < plans.size(); ++i) planOf[plans[i].part] = i;
-  std::size_t hanging = 0;
+/// Per plan, the plans whose parts share nodes with it (their shells are in its model), ascending.
+std::vector<std::vector<std::size_t>> planNeighbours(const std::vector<FeModel>& models,
+                                                     const std::vector<PartPlan>& plans) {
+  const std::unordered_map<Id, std::size_t> planOf = planIndex(plans);
+  std::vector<std::vector<std::size_t>> result(plans.size());
   for (std::size_t i = 0; i < plans.size(); ++i) {
-    if (parts[i].status == PartStatus::Kept) continue;
-    for (const Id other : otherParts(models[i], plans[i].part)) {
-      const auto j = planOf.find(other);
-      if (j == planOf.end() || parts[j->second].status == PartStatus::Kept) continue;
-      const double size = std::min(plans[i].targetSize, plans[j->second].targetSize);
-      hanging += pipeline::hangingPoints(meshes[i], meshes[j->second], kHangingShare * size);
-    }
+    for (const Id other : otherParts(models[i], plans[i].part))
+      if (const auto it = planOf.find(other); it != planOf.end()) result[i].push_back(it->second);
+    std::sort(result[i].begin(), result[i].end());
   }
-  return hanging;
+  return result;
 }
 
 /// The parts of `fixed` (ascending IDs) whose shells are in `part`'s model: its kept neighbours.
@@ -394,6 +373,7 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
   }
   std::vector<std::size_t> mergedNodes;
   const std::vector<FeModel> models = partModels(deck, plans, mergedNodes);
+  const std::vector<std::vector<std::size_t>> neighbours = planNeighbours(models, plans);
   std::vector<double> junctionSpacing;
   std::unordered_map<Id, double> seamSpacing;
   const auto updateSpacing = [&] {
@@ -419,7 +399,8 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
   // fixed part itself with all its seams fixed); the neighbours of a part kept in a round, and
   // that part, are done again in the next. After the first round, when parts were kept that
   // mayHalve allows, the first round is done again with those at half their size; its results
-  // stay when more parts pass so, none that passed is lost and no more seam points hang.
+  // stay group by group (takeHalvedGroups) where more parts pass so, none that passed is lost
+  // and no more seam points hang.
   const std::vector<std::unordered_set<Id>> hardPoints = partHardPoints(deck, plans);
   RemeshSettings halvedSettings = settings;  // a halved part's retries stop at the same voxel
   halvedSettings.retries = std::max(0, settings.retries - 1);
@@ -457,21 +438,23 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
         anyHalvable = true;
       }
     if (anyHalvable) {
-      const std::vector<RemeshedPart> fullParts = report.parts;
-      const std::vector<QuadMesh> fullMeshes = meshes;
-      const std::vector<PartPlan> fullPlans = plans;
+      pipeline::RoundResult full{report.parts, meshes, plans};
+      std::vector<std::uint8_t> halved(plans.size(), 0), redone(plans.size(), 0);
+      for (const std::size_t i : todo) redone[i] = 1;
       for (std::size_t i = 0; i < plans.size(); ++i)
-        if (!fullSizeReason[i].empty()) plans[i].targetSize *= 0.5;
+        if (!fullSizeReason[i].empty()) {
+          plans[i].targetSize *= 0.5;
+          halved[i] = 1;
+        }
       updateSpacing();
       remeshAll(todo, true, false);
-      if (!acceptsMore(fullParts, report.parts) ||
-          hangingSeamPoints(meshes, report.parts, models, plans) >
-              hangingSeamPoints(fullMeshes, fullParts, models, fullPlans)) {
-        report.parts = fullParts;
-        meshes = fullMeshes;
-        plans = fullPlans;
-        updateSpacing();
-      }
+      pipeline::RoundResult half{std::move(report.parts), std::move(meshes), std::move(plans)};
+      pipeline::takeHalvedGroups(full, half, pipeline::halvingGroups(neighbours, halved, redone),
+                                 neighbours);
+      report.parts = std::move(full.parts);
+      meshes = std::move(full.meshes);
+      plans = std::move(full.plans);
+      updateSpacing();
       fullSizeReason.assign(plans.size(), std::string());
     }
     std::vector<Id> newlyKept;
