@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "voxremesh/errors.h"
 #include "voxremesh/quality.h"
@@ -173,6 +174,32 @@ TEST(QualityReport, MinLengthScalesWithTheTargetSize) {
   const voxremesh::QualityReport report = voxremesh::assessQuality(grid(2, 2), settings);
   EXPECT_EQ(report.criteria[static_cast<int>(Criterion::MinLength)].failing, 4u);
   EXPECT_DOUBLE_EQ(report.criteria[static_cast<int>(Criterion::MinLength)].limit, 1.25);
+}
+
+TEST(QualityReport, AKnifeEdgeOfTheOriginalIsNoFold) {
+  // Two unit quads meeting at x = 0 in a wedge of 30 degrees (a trailing edge): their normals
+  // are 150 degrees apart, so each is folded against its only neighbour. With the original given
+  // and its feature line along the shared edge, that edge is a ridge of the geometry: no fold.
+  const double c = std::cos(M_PI / 6), s = std::sin(M_PI / 6);
+  QuadMesh mesh;
+  mesh.points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {c, 1, s}, {c, 0, s}};
+  mesh.faces = {{0, 1, 2, 3}, {0, 3, 4, 5}};
+  voxremesh::QualitySettings settings;
+  settings.targetSize = 1.0;
+  voxremesh::MeshCurve ridge;
+  ridge.points = {{0, 0, 0}, {0, 1, 0}};
+  ridge.role = voxremesh::PointRole::Feature;
+  const std::vector<voxremesh::MeshCurve> curves{ridge};
+  const auto folded = [](const voxremesh::QualityReport& r) {
+    return r.criteria[static_cast<int>(Criterion::Folded)].failing;
+  };
+  EXPECT_EQ(voxremesh::foldedFaces(mesh), (std::vector<std::uint8_t>{1, 1}));
+  EXPECT_EQ(folded(voxremesh::assessQuality(mesh, settings, nullptr, &curves)), 2u);
+  EXPECT_EQ(folded(voxremesh::assessQuality(mesh, settings, &mesh, &curves)), 0u);
+  // A curve across the edge (from its middle out into the first quad) is no ridge along it.
+  ridge.points = {{0, 0.5, 0}, {1, 0.5, 0}};
+  const std::vector<voxremesh::MeshCurve> across{ridge};
+  EXPECT_EQ(folded(voxremesh::assessQuality(mesh, settings, &mesh, &across)), 2u);
 }
 
 TEST(ElementFailures, JacobianAtCornersOrGaussPoints) {

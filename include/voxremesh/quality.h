@@ -56,6 +56,8 @@
 // - Folded: the element's normal points against (more than 120 degrees from) the normals of at
 //   least half of its edge neighbours, each neighbour's normal taken in the element's orientation
 //   (flipped when the two run along their shared edge in the same direction). foldedFaces below.
+//   With an original (assessQuality), a neighbour across an edge along one of the original's
+//   feature lines or junction curves (a knife edge of the geometry) does not count as opposite.
 // - Distance (only with an original surface): a sample of the element (a corner or a point
 //   inside it) lies farther than the distance limit from the original, or a sample of the
 //   original farther than the limit has its closest point on the element (the element is where
@@ -215,9 +217,16 @@ SurfaceDistance surfaceDistance(const QuadMesh& mesh, const QuadMesh& original,
                                 double sampleSpacing = 0.0);
 
 /// Per face of the mesh, 1 when it is folded (see "Folded" at the top of the file), else 0.
-/// Faces with a zero normal and faces without a neighbour are not folded. Preconditions: faces
-/// name existing points.
-std::vector<std::uint8_t> foldedFaces(const QuadMesh& mesh);
+/// Faces with a zero normal and faces without a neighbour are not folded.
+/// @param ridges  null, or curves of the surface the mesh stands for along which it turns
+///                sharply (an original's feature lines and junction curves: channelCurves): a
+///                neighbour across an edge lying along one of them is not counted as opposite,
+///                so that the two sides of a knife edge (a trailing edge, a flange folded back)
+///                are no fold. An edge lies along a curve when its ends are within 1e-4 and its
+///                midpoint within 0.05 of its length of the same curve.
+/// Preconditions: faces name existing points.
+std::vector<std::uint8_t> foldedFaces(const QuadMesh& mesh,
+                                      const std::vector<MeshCurve>* ridges = nullptr);
 
 /// Connected pieces and boundary loops of a mesh, as the acceptance of a remeshed part compares
 /// them with the original part.

@@ -230,7 +230,8 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
     report.criteria.push_back(summary);
   }
   // Folded: the value is 1 for a folded element, the limit 0 (none allowed).
-  const std::vector<std::uint8_t> folded = foldedFaces(mesh);
+  // With an original, its feature lines and junction curves are the knife edges it has.
+  const std::vector<std::uint8_t> folded = foldedFaces(mesh, original ? channels : nullptr);
   addMeshCriterion(report, Criterion::Folded, 0.0,
                    std::vector<double>(folded.begin(), folded.end()), folded);
   // The distance is judged (and sampled, at half the size) against the size it scales with.
