@@ -7,10 +7,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
+#include "extract/junction_nodes.h"
 #include "support/mesh_topology.h"
 #include "support/surface_distance.h"
 #include "support/test_support.h"
+#include "voxremesh/deck_compare.h"
 #include "voxremesh/extract.h"
 #include "voxremesh/io.h"
 #include "voxremesh/pipeline.h"
@@ -105,6 +108,43 @@ TEST(ExtractOpen, PlateKeepsHolesOfOneAndTwoElementsAndALargerOne) {
   EXPECT_EQ(inputBoundaryLoops(x.sheets), 4u);
   expectCleanOpenMesh(x);
   EXPECT_GT(x.stats.stripQuads, 0u);
+}
+
+TEST(ExtractOpen, AHoleBesideASeamIsBridgedToItOnlyAtTheSeamsNodes) {
+  // A 16 x 16 plate with a hole one element from its edge y = 0, where a wall (part 2) stands on
+  // the plate: the edge is a junction curve, its nodes 3 apart (the original's are 1 apart). The
+  // hole's loop is joined to the outer loop by a bridge; a bridge ending at an original node
+  // inside the seam would put a node there that the wall does not have.
+  FeModel model = plateModel(16, 1.0, [](int i, int j) { return i >= 7 && i <= 8 && j == 1; });
+  const double x0 = 0.37, y0 = 0.21, z0 = 0.13;
+  for (int i = 0; i <= 16; ++i) test::addNode(model, Id(1000 + i), x0 + i, y0, z0 + 1.0);
+  for (int i = 0; i < 16; ++i)
+    test::addShell(model, Id(1000 + i), 2, {Id(i + 2), Id(i + 1), Id(1000 + i), Id(1001 + i)});
+  const std::vector<Sheet> sheets = buildSheets(model, 1);
+  VolumeSettings settings;
+  settings.rule = VoxelSizeRule::Explicit;
+  settings.voxelSize = 1.0;
+  const Volume volume = buildVolume(sheets, settings);
+  ExtractSettings extractSettings;
+  extractSettings.junctionSpacing = 3.0;
+  const QuadMesh mesh = extractQuadMesh(volume, extractSettings);
+  ASSERT_EQ(volume.junctionCurves().size(), 1u);
+  const std::vector<std::array<double, 3>> seamNodes =
+      extract::JunctionNodes(volume.junctionCurves(), 3.0, 0.6, kChordSagittaShare).nodes();
+  std::set<std::array<double, 3>> boundary;
+  for (const auto& segment : test::boundarySegments(mesh))
+    boundary.insert(segment.begin(), segment.end());
+  std::size_t onSeam = 0;
+  for (const auto& p : boundary) {
+    if (std::abs(p[1] - y0) > 1e-9 || std::abs(p[2] - z0) > 1e-9) continue;
+    ++onSeam;
+    const bool node = std::any_of(seamNodes.begin(), seamNodes.end(), [&](const auto& q) {
+      return std::abs(q[0] - p[0]) < 1e-9 && std::abs(q[1] - p[1]) < 1e-9;
+    });
+    EXPECT_TRUE(node) << "a node at x = " << p[0] - x0 << " on the seam that the wall lacks";
+  }
+  EXPECT_EQ(onSeam, seamNodes.size());
+  EXPECT_EQ(test::meshTopology(mesh).boundaryLoops, 2u);
 }
 
 TEST(ExtractOpen, FoldStaysSharp) {

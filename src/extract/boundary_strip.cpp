@@ -112,17 +112,30 @@ struct TargetLoop {
   std::vector<double> cornerParams;         ///< arc lengths of nodes the strip must have
 };
 
+/// True when point i of the closed polyline `points` lies inside a junction stretch (both of its
+/// segments are junction curve edges) without being a node of the curve: a node there would be
+/// one the part across the junction does not have.
+bool insideJunctionStretch(const std::vector<std::array<double, 3>>& points, std::size_t i,
+                           const JunctionNodes& junctions) {
+  const std::size_t n = points.size();
+  const std::array<double, 3>& p = points[i];
+  return junctions.edge(points[(i + n - 1) % n], p) && junctions.edge(p, points[(i + 1) % n]) &&
+         !junctions.isNodePoint(p);
+}
+
 /// Joins the loops into one target loop: starting from the first, each further loop is inserted
 /// at a bridge (there and back) from a loop joined already, the bridge ends becoming corners. The
 /// bridges are `pairs` (indices into `curves`, bridgePairs' tree) where they reach a loop not
 /// joined yet, each between the closest points of its two loops (on the joined one, a point whose
 /// next segment runs along it); loops no pair reaches are joined nearest first (Prim's order: the
 /// loop with the closest pair of points to the target so far), so that holes in a row are joined
-/// one to the next, not by a bridge across a hole between them. Corners of the loops are the
-/// points equal to one of `corners`.
+/// one to the next, not by a bridge across a hole between them. A bridge ends at no point inside
+/// a junction stretch (insideJunctionStretch) where another pair reaches the loop. Corners of the
+/// loops are the points equal to one of `corners`.
 TargetLoop joinLoops(const QuadMesh& mesh, const std::vector<std::uint32_t>& curves,
                      const std::vector<std::array<double, 3>>& corners,
-                     const std::vector<std::pair<std::size_t, std::size_t>>& pairs) {
+                     const std::vector<std::pair<std::size_t, std::size_t>>& pairs,
+                     const JunctionNodes& junctions) {
   TargetLoop target;
   std::vector<char> isCorner;
   auto cornerAt = [&](const std::array<double, 3>& p) {
@@ -151,16 +164,21 @@ TargetLoop joinLoops(const QuadMesh& mesh, const std::vector<std::uint32_t>& cur
           break;
         }
       double best = std::numeric_limits<double>::infinity();
-      for (std::size_t c = 0; c < curves.size(); ++c) {
-        if (joined[c] || (k < curves.size() && c != k)) continue;
-        const std::vector<std::array<double, 3>>& candidate = mesh.curves[curves[c]].points;
-        for (std::size_t i = 0; i < target.points.size(); ++i) {
-          if (from < curves.size() && target.segmentCurve[i] != curves[from]) continue;
-          for (std::size_t j = 0; j < candidate.size(); ++j) {
-            const double d = (toVec(target.points[i]) - toVec(candidate[j])).lengthSqr();
-            if (d < best) best = d, k = c, bestI = i, bestJ = j;
+      for (const bool anyEnd : {false, true}) {  // first without ends inside junction stretches
+        for (std::size_t c = 0; c < curves.size(); ++c) {
+          if (joined[c] || (k < curves.size() && c != k)) continue;
+          const std::vector<std::array<double, 3>>& candidate = mesh.curves[curves[c]].points;
+          for (std::size_t i = 0; i < target.points.size(); ++i) {
+            if (from < curves.size() && target.segmentCurve[i] != curves[from]) continue;
+            if (!anyEnd && insideJunctionStretch(target.points, i, junctions)) continue;
+            for (std::size_t j = 0; j < candidate.size(); ++j) {
+              if (!anyEnd && insideJunctionStretch(candidate, j, junctions)) continue;
+              const double d = (toVec(target.points[i]) - toVec(candidate[j])).lengthSqr();
+              if (d < best) best = d, k = c, bestI = i, bestJ = j;
+            }
           }
         }
+        if (best < std::numeric_limits<double>::infinity()) break;
       }
       if (k == curves.size()) break;  // only empty loops left
       joined[k] = 1;
@@ -672,8 +690,9 @@ StripStats rebuildStripAsIs(QuadMesh& mesh, const std::vector<std::uint32_t>& lo
                             : -1);
     }
     const auto pairs = bridgePairs(labels, loopsOfDual[d].size());
-    buildStrip(mesh, dualLoops[d], normals, joinLoops(mesh, loopsOfDual[d], corners, pairs),
-               junctions, spacing, tolerance, stats);
+    buildStrip(mesh, dualLoops[d], normals,
+               joinLoops(mesh, loopsOfDual[d], corners, pairs, junctions), junctions, spacing,
+               tolerance, stats);
   }
   return stats;
 }
