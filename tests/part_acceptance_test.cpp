@@ -255,3 +255,36 @@ TEST(HalfPass, AGroupsResultsStayWhenMoreOfItsPartsPassAndNoneIsLost) {
   EXPECT_EQ(full.parts[0].status, S::Retried);
   EXPECT_EQ(full.parts[3].status, S::Remeshed);
 }
+
+TEST(HardPoints, APointOnAnEdgeSplitsItAndBothFacesAlongIt) {
+  // A 2 x 2 grid of unit quads; a hard point on the inner edge x = 1, y = 0..1 lies inside no
+  // face: it splits the edge, each of its two quads becoming three triangles round it, oriented
+  // as the quads, nothing folded. A point inside a quad still becomes a fan of four.
+  QuadMesh mesh = test::unitGrid(2);
+  const std::size_t points = mesh.points.size();
+  EXPECT_EQ(pipeline::insertHardPoints(mesh, {{1.0, 0.5, 0.0}, {0.5, 1.5, 0.0}}, 1e-6), 2u);
+  ASSERT_EQ(mesh.points.size(), points + 2);
+  EXPECT_EQ(mesh.points[points], (std::array<double, 3>{1.0, 0.5, 0.0}));
+  EXPECT_EQ(mesh.constraints[points].role, PointRole::Corner);
+  std::size_t aroundEdgePoint = 0, aroundInnerPoint = 0;
+  for (const auto& face : mesh.faces) {
+    aroundEdgePoint += std::count(face.begin(), face.end(), CornerIndex(points));
+    aroundInnerPoint += std::count(face.begin(), face.end(), CornerIndex(points + 1));
+  }
+  EXPECT_EQ(aroundEdgePoint, 6u);
+  EXPECT_EQ(aroundInnerPoint, 4u);
+  EXPECT_EQ(mesh.faces.size(), 1u + 6u + 4u);
+  EXPECT_EQ(test::foldedCount(mesh), 0u);
+  double area = 0.0;
+  for (const auto& face : mesh.faces) {
+    const int n = cornerCount(face);
+    const auto& p = mesh.points;
+    for (int k = 1; k + 1 < n; ++k) {  // counter-clockwise seen from +z: positive
+      const auto& a = p[face[0]];
+      const auto& b = p[face[std::size_t(k)]];
+      const auto& c = p[face[std::size_t(k + 1)]];
+      area += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+    }
+  }
+  EXPECT_NEAR(area, 4.0, 1e-12);
+}

@@ -149,6 +149,46 @@ bool insideFace(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face, co
   return true;
 }
 
+/// Puts `target` on the edge of `mesh` it lies on (within `reach` of the segment, away from its
+/// ends), as point `point`: every face with that edge becomes the fan of triangles from its other
+/// edges to the point, in its orientation. False when no edge is that close.
+bool splitEdgeAt(QuadMesh& mesh, const Point3& target, CornerIndex point, double reach) {
+  using namespace geom;  // NOLINT: the vector operators
+  const auto& p = mesh.points;
+  CornerIndex a = kNoCorner, b = kNoCorner;
+  for (const auto& face : mesh.faces) {
+    const int n = cornerCount(face);
+    for (int k = 0; k < n && a == kNoCorner; ++k) {
+      const CornerIndex u = face[std::size_t(k)], v = face[std::size_t((k + 1) % n)];
+      const Vec3 along = p[v] - p[u];
+      const double length2 = dot(along, along);
+      if (!(length2 > 0.0)) continue;
+      const double t = dot(target - p[u], along) / length2;
+      if (t > 1e-6 && t < 1.0 - 1e-6 && norm(p[u] + along * t - target) <= reach) a = u, b = v;
+    }
+    if (a != kNoCorner) break;
+  }
+  if (a == kNoCorner) return false;
+  std::vector<std::array<CornerIndex, 4>> faces;
+  for (const auto& face : mesh.faces) {
+    const int n = cornerCount(face);
+    int split = -1;
+    for (int k = 0; k < n; ++k) {
+      const CornerIndex u = face[std::size_t(k)], v = face[std::size_t((k + 1) % n)];
+      if ((u == a && v == b) || (u == b && v == a)) split = k;
+    }
+    if (split < 0) {
+      faces.push_back(face);
+      continue;
+    }
+    for (int k = 0; k < n; ++k)
+      if (k != split)
+        faces.push_back({face[std::size_t(k)], face[std::size_t((k + 1) % n)], point, kNoCorner});
+  }
+  mesh.faces = std::move(faces);
+  return true;
+}
+
 }  // namespace
 
 std::size_t insertHardPoints(QuadMesh& mesh, const std::vector<Point3>& points, double reach) {
@@ -159,10 +199,16 @@ std::size_t insertHardPoints(QuadMesh& mesh, const std::vector<Point3>& points, 
     const auto face = std::find_if(mesh.faces.begin(), mesh.faces.end(), [&](const auto& f) {
       return insideFace(mesh, f, target, reach);
     });
-    if (face == mesh.faces.end()) continue;
+    const auto point = CornerIndex(mesh.points.size());
+    if (face == mesh.faces.end()) {
+      if (!splitEdgeAt(mesh, target, point, reach)) continue;
+      mesh.points.push_back(target);
+      mesh.constraints.push_back({PointRole::Corner, kNoCurve});
+      ++inserted;
+      continue;
+    }
     const std::array<CornerIndex, 4> corners = *face;
     const int n = cornerCount(corners);
-    const auto point = CornerIndex(mesh.points.size());
     mesh.points.push_back(target);
     mesh.constraints.push_back({PointRole::Corner, kNoCurve});
     *face = {corners[0], corners[1], point, kNoCorner};

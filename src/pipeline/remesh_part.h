@@ -105,7 +105,9 @@ std::size_t snapHardPoints(QuadMesh& mesh, const std::vector<Point3>& points, do
 /// Each of `points` that is not a point of `mesh` yet and lies inside one of its faces (within
 /// `reach` of the face's plane, on the inner side of every edge) becomes a fixed point (role
 /// Corner) of it: the face is replaced by the fan of triangles from its edges to the point, in its
-/// orientation (the optimisation may merge them into quads again).
+/// orientation (the optimisation may merge them into quads again). A point on an edge instead
+/// (within `reach` of it, away from its ends) splits the edge: each face along it becomes the
+/// fan from its other edges.
 /// @return how many of `points` were inserted
 std::size_t insertHardPoints(QuadMesh& mesh, const std::vector<Point3>& points, double reach);
 
