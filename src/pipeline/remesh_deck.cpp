@@ -447,10 +447,14 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
           halved[i] = 1;
         }
       updateSpacing();
-      remeshAll(todo, true, false);
+      // Only the groups' parts get other seams or sizes: the rest would mesh as before.
+      const std::vector<std::size_t> groups = pipeline::halvingGroups(neighbours, halved, redone);
+      std::vector<std::size_t> members;
+      for (const std::size_t i : todo)
+        if (groups[i] != pipeline::kNoGroup) members.push_back(i);
+      remeshAll(members, true, false);
       pipeline::RoundResult half{std::move(report.parts), std::move(meshes), std::move(plans)};
-      pipeline::takeHalvedGroups(full, half, pipeline::halvingGroups(neighbours, halved, redone),
-                                 neighbours);
+      pipeline::takeHalvedGroups(full, half, groups, neighbours);
       report.parts = std::move(full.parts);
       meshes = std::move(full.meshes);
       plans = std::move(full.plans);
