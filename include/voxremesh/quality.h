@@ -47,6 +47,13 @@
 //   elements are judged at 1 mm (DESIGN.md: narrow features are kept, with smaller elements,
 //   judged against the size actually used there); next to a single curve, or in a corner of a
 //   right angle or more, the ball grows past the element and the target size applies.
+// - Sharp corners: where the original surface spans less than the triangle minimum angle between
+//   two of those curves at a point (a wing rib's trailing edge, two seams meeting at 15 degrees),
+//   every mesh has an element with that angle there. A triangle that fills such a corner (its two
+//   edges there run along the corner's two sides) is judged by its other two angles: when both
+//   lie within the triangle angle limits, the criteria its corner angle alone decides (minimum
+//   angle, aspect, skew, scaled Jacobian) do not count as failing. Its minimum length, distance
+//   and fold are judged as any element's. Two elements sharing the corner both fail.
 //
 // - Degenerate corner (quads): the largest reflex-corrected interior angle above
 //   QualitySettings::degenerateCornerDeg (179 degrees): the element normal solvers estimate there
@@ -271,6 +278,9 @@ struct QualityReport {
   std::vector<double> judgedSize;
   /// Faces judged against a channel narrower than targetSize (minimum length only).
   std::size_t narrowChannelElements = 0;
+  /// Triangles filling a corner of the original sharper than the triangle angle limit, judged by
+  /// their other two angles (see the top of the file; only with an original and its curves).
+  std::size_t sharpCornerElements = 0;
 
   /// The mesh passes: at most settings.maxFailingShare of its elements fail a criterion, none is
   /// folded or has a degenerate corner, and the triangle share and (if measured) the distance are

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -13,6 +12,7 @@
 #include "extract/pinch_fans.h"
 #include "extract/polyline_param.h"
 #include "extract/strip_zip.h"
+#include "geometry/disjoint_sets.h"
 #include "model/shell_edges.h"
 
 namespace voxremesh::extract {
@@ -24,23 +24,6 @@ using openvdb::math::Vec3d;
 Vec3d toVec(const std::array<double, 3>& p) {
   return Vec3d(p[0], p[1], p[2]);
 }
-
-/// Union-find over indices.
-struct Components {
-  std::vector<std::uint32_t> parent;
-  explicit Components(std::size_t n) : parent(n) {
-    std::iota(parent.begin(), parent.end(), std::uint32_t{0});
-  }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 /// The closed boundary loops of the mesh (point indices, mesh on the left), and for every face
 /// its piece: faces joined across shared edges (a face touching the rest at a corner only is a
@@ -65,14 +48,15 @@ DualBoundary dualBoundary(const QuadMesh& mesh) {
     result.loops.push_back(chain.nodes);
     result.loopFace.push_back(adjacency.incidences(chain.edges.front())[0].shell);
   }
-  Components pieces(mesh.faces.size());
+  DisjointSets pieces(mesh.faces.size());
   for (std::size_t e = 0; e < adjacency.edgeCount(); ++e) {
     const auto incidences = adjacency.incidences(model::Index(e));
     for (std::size_t i = 1; i < incidences.size(); ++i)
-      pieces.unite(incidences[0].shell, incidences[i].shell);
+      pieces.join(incidences[0].shell, incidences[i].shell);
   }
   result.piece.resize(mesh.faces.size());
-  for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) result.piece[f] = pieces.find(f);
+  for (std::uint32_t f = 0; f < mesh.faces.size(); ++f)
+    result.piece[f] = static_cast<std::uint32_t>(pieces.find(f));
   return result;
 }
 

@@ -2,12 +2,12 @@
 #include "extract/sheet_patches.h"
 
 #include <map>
-#include <numeric>
 #include <set>
 #include <string>
 #include <utility>
 
 #include "extract/narrow_sheet.h"
+#include "geometry/disjoint_sets.h"
 
 namespace voxremesh::extract {
 
@@ -21,12 +21,6 @@ Edge edgeKey(PointIndex a, PointIndex b) {
 
 int corners(const std::array<PointIndex, 4>& face) {
   return face[3] == kNoPoint ? 3 : 4;
-}
-
-/// The root of x in a union-find forest, halving the path.
-std::size_t findRoot(std::vector<std::size_t>& parent, std::size_t x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
 }
 
 /// The inner junction edges of a sheet, and its feature-line edges when asked (see sheetPatches).
@@ -105,22 +99,20 @@ std::vector<SheetPatch> sheetPatches(const Sheet& sheet, bool atFeatureLines) {
       edgeFaces[edgeKey(sheet.faces[f][std::size_t(c)],
                         sheet.faces[f][std::size_t((c + 1) % corners(sheet.faces[f]))])]
           .push_back(f);
-  std::vector<std::size_t> parent(sheet.faces.size());
-  std::iota(parent.begin(), parent.end(), std::size_t{0});
+  DisjointSets pieces(sheet.faces.size());
   for (const auto& [edge, faces] : edgeFaces)
-    if (faces.size() == 2 && cuts.count(edge) == 0)
-      parent[findRoot(parent, faces[1])] = findRoot(parent, faces[0]);
+    if (faces.size() == 2 && cuts.count(edge) == 0) pieces.join(faces[0], faces[1]);
   for (const Edge& cut : cuts) {
     const auto it = edgeFaces.find(cut);
     if (it != edgeFaces.end() && it->second.size() == 2 &&
-        findRoot(parent, it->second[0]) == findRoot(parent, it->second[1]))
+        pieces.find(it->second[0]) == pieces.find(it->second[1]))
       throw NarrowSheetRefusal(atFeatureLines ? "a junction curve or feature line ends inside it"
                                               : "a junction curve ends inside it");
   }
   std::map<std::size_t, std::size_t> patchOfRoot;
   std::vector<SheetPatch> patches;
   for (std::size_t f = 0; f < sheet.faces.size(); ++f) {
-    const auto [it, added] = patchOfRoot.emplace(findRoot(parent, f), patches.size());
+    const auto [it, added] = patchOfRoot.emplace(pieces.find(f), patches.size());
     if (added) patches.emplace_back();
     patches[it->second].faces.push_back(f);
   }

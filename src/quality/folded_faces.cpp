@@ -4,9 +4,8 @@
 #include <tuple>
 #include <vector>
 
-#include "geometry/polyline_index.h"
-#include "geometry/safe_box.h"
 #include "geometry/vec3.h"
+#include "quality/ridge_edges.h"
 #include "voxremesh/quality.h"
 
 namespace voxremesh {
@@ -22,48 +21,6 @@ Vec3 unitNormal(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face) {
   return normalized(
       elementNormal(p[face[0]], p[face[1]], p[face[2]], p[face[triangle ? 2 : 3]], triangle));
 }
-
-/// Edges of a mesh lying along one of a set of curves (see foldedFaces).
-class RidgeEdges {
- public:
-  explicit RidgeEdges(const std::vector<MeshCurve>* curves) : curves_(curves) {}
-
-  /// True when the segment a-b lies along one of the curves.
-  bool along(const Vec3& a, const Vec3& b) {
-    if (!curves_) return false;
-    if (!built_) build();
-    const double length = norm(b - a);
-    const Vec3 middle = (a + b) * 0.5;
-    const double endReach = kEndShare * length, middleReach = kMiddleShare * length;
-    for (std::size_t c = 0; c < indexes_.size(); ++c) {
-      if (geom::boxDistance2(a, boxes_[c]) > endReach * endReach) continue;
-      const PolylineIndex& curve = indexes_[c];
-      if (norm(curve.closestPoint(a) - a) <= endReach &&
-          norm(curve.closestPoint(b) - b) <= endReach &&
-          norm(curve.closestPoint(middle) - middle) <= middleReach)
-        return true;
-    }
-    return false;
-  }
-
- private:
-  static constexpr double kEndShare = 1e-4, kMiddleShare = 0.05;
-
-  void build() {
-    built_ = true;
-    for (const MeshCurve& curve : *curves_) {
-      if (curve.role == PointRole::Boundary || curve.points.size() < 2) continue;
-      indexes_.emplace_back(curve.points, curve.closed);
-      geom::Box box;
-      for (const Vec3& p : curve.points) box.add(p);
-      boxes_.push_back(box);
-    }
-  }
-  const std::vector<MeshCurve>* curves_;
-  bool built_ = false;
-  std::vector<PolylineIndex> indexes_;
-  std::vector<geom::Box> boxes_;
-};
 
 }  // namespace
 
@@ -91,7 +48,7 @@ std::vector<std::uint8_t> foldedFaces(const QuadMesh& mesh, const std::vector<Me
   // Per face: neighbours seen, and those whose normal (in this face's orientation) is opposite.
   std::vector<std::uint32_t> neighbours(mesh.faces.size(), 0), opposite(mesh.faces.size(), 0);
   const double kOpposite = -0.5;  // more than 120 degrees apart
-  RidgeEdges ridgeEdges(ridges && !ridges->empty() ? ridges : nullptr);
+  quality::RidgeEdges ridgeEdges(ridges);
   for (std::size_t i = 0; i < halfEdges.size();) {
     std::size_t j = i;
     while (j < halfEdges.size() && halfEdges[j].low == halfEdges[i].low &&

@@ -64,6 +64,13 @@ std::string formatQualityTable(const QualityReport& report) {
                   report.narrowChannelElements);
     out += line;
   }
+  if (report.sharpCornerElements > 0) {
+    std::snprintf(
+        line, sizeof line,
+        "  %zu triangles fill corners sharper than %.4g deg: judged by their other angles\n",
+        report.sharpCornerElements, report.settings.minTriaAngleDeg);
+    out += line;
+  }
   appendRow(out, "any criterion", "", "", std::to_string(report.failingAny),
             percent(report.failingAnyShare));
   appendRow(out, "tria share", "<= " + percent(report.settings.maxTriangleShare),
@@ -110,6 +117,7 @@ std::string qualityReportJson(const QualityReport& report) {
     out += "}";
   }
   out += "],\"narrow_channel_elements\":" + std::to_string(report.narrowChannelElements);
+  out += ",\"sharp_corner_elements\":" + std::to_string(report.sharpCornerElements);
   out += ",\"failing_any\":" + std::to_string(report.failingAny);
   out += ",\"failing_any_share\":";
   appendJsonNumber(out, report.failingAnyShare);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "quality/channel_width.h"
+#include "quality/sharp_corners.h"
 #include "voxremesh/errors.h"
 #include "voxremesh/quality.h"
 
@@ -181,6 +182,24 @@ std::vector<double> judgedSizes(const QuadMesh& mesh, const std::vector<ElementQ
   return sizes;
 }
 
+/// The criteria a triangle filling a sharp corner fails by the corner's angle alone.
+bool forcedByCorner(Criterion c) {
+  return c == Criterion::AspectRatio || c == Criterion::TriaMinAngle || c == Criterion::Skew ||
+         c == Criterion::ScaledJacobian;
+}
+
+/// Per face, 1 for a triangle filling a corner of `original` sharper than the triangle angle
+/// limit (cornerFillingTriangles); none without an original or its curves.
+std::vector<std::uint8_t> sharpCornerTriangles(const QuadMesh& mesh, const QuadMesh* original,
+                                               const std::vector<MeshCurve>* channels,
+                                               const QualitySettings& s) {
+  if (!original || !channels) return std::vector<std::uint8_t>(mesh.faces.size(), 0);
+  quality::RidgeEdges ridges(channels);
+  return quality::cornerFillingTriangles(
+      mesh, quality::sharpCorners(*original, ridges, s.minTriaAngleDeg), s.minTriaAngleDeg,
+      s.maxTriaAngleDeg);
+}
+
 }  // namespace
 
 QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& settings,
@@ -200,6 +219,9 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
   report.judgedSize = judgedSizes(mesh, report.elementValues, s, channels);
   for (double size : report.judgedSize)
     if (size < s.targetSize) ++report.narrowChannelElements;
+  const std::vector<std::uint8_t> fillsCorner = sharpCornerTriangles(mesh, original, channels, s);
+  report.sharpCornerElements =
+      std::size_t(std::count(fillsCorner.begin(), fillsCorner.end(), std::uint8_t(1)));
   for (int c = 0; c < kElementCriterionCount; ++c) {
     const auto criterion = static_cast<Criterion>(c);
     const CriterionRule& r = kRules[c];
@@ -221,7 +243,7 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
       const double limit = criterion == Criterion::MinLength
                                ? s.minLengthFactor * report.judgedSize[f]
                                : summary.limit;
-      if (fails(value, limit, r.isMaximum)) {
+      if (fails(value, limit, r.isMaximum) && !(fillsCorner[f] && forcedByCorner(criterion))) {
         ++summary.failing;
         report.elementFailures[f] |= 1u << c;
       }

@@ -1,31 +1,15 @@
 // topologyCounts: components and boundary loops of a mesh; edgesSharedBy: its edges by how many
 // faces share them (quality.h).
 #include <algorithm>
-#include <numeric>
 #include <utility>
 #include <vector>
 
+#include "geometry/disjoint_sets.h"
 #include "voxremesh/quality.h"
 
 namespace voxremesh {
 
 namespace {
-
-/// Union-find over point indices.
-class DisjointSets {
- public:
-  explicit DisjointSets(std::size_t n) : parent_(n) {
-    std::iota(parent_.begin(), parent_.end(), std::size_t(0));
-  }
-  std::size_t find(std::size_t x) {
-    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
-    return x;
-  }
-  void join(std::size_t a, std::size_t b) { parent_[find(a)] = find(b); }
-
- private:
-  std::vector<std::size_t> parent_;
-};
 
 /// The number of distinct sets among the flagged points.
 std::size_t setsAmong(DisjointSets& sets, const std::vector<bool>& flagged) {
