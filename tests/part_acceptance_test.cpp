@@ -173,6 +173,15 @@ TEST(PartAcceptance, APartThatCannotBeMeshedIsKeptAndTheRestWritten) {
   EXPECT_EQ(report.parts[0].status, PartStatus::Remeshed) << report.parts[0].reason;
   EXPECT_EQ(report.parts[1].status, PartStatus::Kept);
   EXPECT_NE(report.parts[1].reason.find("orient"), std::string::npos) << report.parts[1].reason;
+  // The kept part reports what it writes back: its 24 original quads, judged as a new mesh.
+  const PartAcceptance& written = report.parts[1].acceptance;
+  EXPECT_EQ(written.elements, 24u);
+  EXPECT_EQ(written.quads, 24u);
+  EXPECT_EQ(written.trias, 0u);
+  const QuadMesh strip = quadMeshFromModel(model, 2);
+  QualitySettings judged = RemeshSettings{}.optimizeSettings.quality;
+  judged.targetSize = report.parts[1].plan.targetSize;
+  EXPECT_EQ(written.failing, assessQuality(strip, judged, &strip).failingAny);
   EXPECT_FALSE(report.allAccepted());
   const auto dir = test::scratchDir("acceptance_fallback");
   writeDeck(deck, dir / "out.k");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <limits>
 #include <string>
 
@@ -189,6 +190,19 @@ PartAcceptance acceptPartMesh(const QuadMesh& mesh, const QuadMesh& original,
   a.reason = failedCheck(a, judged);
   a.accepted = a.reason.empty();
   return a;
+}
+
+PartAcceptance keptPartQuality(const FeModel& model, const PartPlan& plan,
+                               const RemeshSettings& settings) {
+  const QuadMesh original = quadMeshFromModel(model, plan.part);
+  std::vector<MeshCurve> channels;
+  try {
+    channels = channelCurves(buildSheets(model, plan.part, settings.sheets));
+  } catch (const std::exception&) {
+    // judged without channels: every element's minimum length against the target size
+  }
+  return acceptPartMesh(original, original, {}, plan.targetSize, plan.targetSize,
+                        settings.optimizeSettings.quality, channels);
 }
 
 }  // namespace voxremesh::pipeline

@@ -470,6 +470,16 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
     fixed.insert(fixed.end(), newlyKept.begin(), newlyKept.end());
     std::sort(fixed.begin(), fixed.end());
   }
+  // A kept part reports the quality of what it writes back: its original shells.
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t(0), plans.size(), [&](std::size_t i) {
+      RemeshedPart& part = report.parts[i];
+      if (part.status != PartStatus::Kept) return;
+      part.acceptance = pipeline::keptPartQuality(models[i], plans[i], settings);
+      part.quads = part.acceptance.quads;
+      part.trias = part.acceptance.trias;
+    });
+  });
   std::vector<QuadMesh> accepted;
   for (std::size_t i = 0; i < plans.size(); ++i)
     if (report.parts[i].status != PartStatus::Kept) accepted.push_back(std::move(meshes[i]));

@@ -37,6 +37,12 @@ PartAcceptance acceptPartMesh(const QuadMesh& mesh, const QuadMesh& original,
                               double askedSize, const QualitySettings& settings,
                               const std::vector<MeshCurve>& channels);
 
+/// What a kept part writes back, judged as a new mesh of it would be: acceptPartMesh of its
+/// original shells against themselves at its target size, its sheets' curves bounding the
+/// channels (none when its sheets cannot be built). Throws SettingError for bad settings.
+PartAcceptance keptPartQuality(const FeModel& model, const PartPlan& plan,
+                               const RemeshSettings& settings);
+
 /// Makes a part's unmerged coincident nodes one: in the shells of `part`, every node within
 /// `tolerance` (in each coordinate) of a node with a smaller ID is replaced by that node, so that
 /// a slit between doubled rows of nodes (a tube meshed round with its seam row doubled) is no

@@ -96,7 +96,8 @@ std::vector<Id> parseParts(const std::string& text) {
 }
 
 /// The per-part table: status, elements before and after, quads and trias, the size the mesh
-/// was judged at, failing share, distance, folds and the part's time (all stages); then the
+/// was judged at, failing share, distance, folds and the part's time (all stages); a kept part's
+/// figures are those of its original shells, which it writes back (keptPartQuality). Then the
 /// reason of every kept part and of every reduced voxel.
 std::string remeshSummary(const RemeshReport& report) {
   std::string text =
@@ -107,13 +108,12 @@ std::string remeshSummary(const RemeshReport& report) {
   for (const RemeshedPart& part : report.parts) {
     const PartAcceptance& a = part.acceptance;
     const bool kept = part.status == PartStatus::Kept;
-    std::snprintf(line, sizeof line,
-                  "  %-8lld %-8s %6zu %8zu %7zu %9.4g %7.2f %% %10.4g %7zu %8.2f\n",
-                  static_cast<long long>(part.plan.part), partStatusName(part.status),
-                  part.plan.shells, kept ? part.plan.shells : a.elements, kept ? 0 : a.trias,
-                  kept ? part.plan.targetSize : part.voxelSize, kept ? 0.0 : 100.0 * a.failingShare,
-                  kept ? 0.0 : a.distance, kept ? std::size_t(0) : a.folded,
-                  part.volumeSeconds + part.extractSeconds + part.optimizeSeconds);
+    std::snprintf(
+        line, sizeof line, "  %-8lld %-8s %6zu %8zu %7zu %9.4g %7.2f %% %10.4g %7zu %8.2f\n",
+        static_cast<long long>(part.plan.part), partStatusName(part.status), part.plan.shells,
+        kept ? part.plan.shells : a.elements, a.trias, kept ? part.plan.targetSize : part.voxelSize,
+        100.0 * a.failingShare, kept ? 0.0 : a.distance, a.folded,
+        part.volumeSeconds + part.extractSeconds + part.optimizeSeconds);
     text += line;
     if (!part.reason.empty())
       reasons += "  part " + std::to_string(part.plan.part) + " " + partStatusName(part.status) +
@@ -125,12 +125,13 @@ std::string remeshSummary(const RemeshReport& report) {
 /// The last line: totals over the parts.
 std::string formatRemeshTotals(const std::string& output, const RemeshReport& report,
                                double seconds) {
-  std::size_t before = 0, after = 0, failing = 0;
+  std::size_t before = 0, after = 0, failing = 0, keptFailing = 0;
   double distanceShare = 0.0;
   for (const RemeshedPart& part : report.parts) {
     before += part.plan.shells;
     if (part.status == PartStatus::Kept) {
       after += part.plan.shells;
+      keptFailing += part.acceptance.failing;
       continue;
     }
     after += part.acceptance.elements;
@@ -140,11 +141,12 @@ std::string formatRemeshTotals(const std::string& output, const RemeshReport& re
   char line[512];
   std::snprintf(line, sizeof line,
                 "wrote %s: %zu parts remeshed, %zu retried at a finer voxel, %zu kept; %zu -> %zu "
-                "elements, %zu remeshed ones failing a criterion; largest distance %.3g x size; "
-                "%zu hard points kept, %zu node references remapped, %zu not remappable, %.2f s\n",
+                "elements, %zu remeshed ones failing a criterion, %zu kept ones; largest distance "
+                "%.3g x size; %zu hard points kept, %zu node references remapped, %zu not "
+                "remappable, %.2f s\n",
                 output.c_str(), report.count(PartStatus::Remeshed),
                 report.count(PartStatus::Retried), report.count(PartStatus::Kept), before, after,
-                failing, distanceShare, report.assembly.hardPointsKept,
+                failing, keptFailing, distanceShare, report.assembly.hardPointsKept,
                 report.assembly.remaps.size(), report.assembly.unmapped.size(), seconds);
   return line;
 }
