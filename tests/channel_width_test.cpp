@@ -87,16 +87,25 @@ TEST(MinLengthInChannels, AStripIsJudgedAtItsWidth) {
 
 TEST(MinLengthInChannels, APlateIsJudgedAtTheTargetSize) {
   // 1 x 1 quads on a 12 x 12 plate at a target size of 4: only the boundary is a curve, the
-  // channel is the whole plate, and every element is too short. Only the four corner elements
-  // lie in balls narrower than 4 (about 3.4 wide), still too wide to excuse them.
+  // channel is the whole plate, and every element is too short. Even the four corner elements
+  // lie in balls about 3.4 wide, too wide to excuse them (an element is excused by a channel
+  // narrower than twice its length), so every element is judged at the target size.
   const QuadMesh mesh = grid(12, 12, 1.0);
   voxremesh::QualitySettings settings;
   settings.targetSize = 4.0;
   const std::vector<MeshCurve> channels = outline(12.0, 12.0);
   const auto report = voxremesh::assessQuality(mesh, settings, nullptr, &channels);
   EXPECT_EQ(report.failing(Criterion::MinLength), 144u);
-  EXPECT_EQ(report.narrowChannelElements, 4u);
-  for (double size : report.judgedSize) EXPECT_GT(size, 3.2);
+  EXPECT_EQ(report.narrowChannelElements, 0u);
+  for (double size : report.judgedSize) EXPECT_DOUBLE_EQ(size, 4.0);
+}
+
+TEST(ChannelWidth, ACapOfTheQueryBoundsTheSearch) {
+  // A strip 3 wide: measured up to a cap of 2, it is "at least 2"; up to 5, its width.
+  const ChannelWidth width({line({0, 0, 0}, {20, 0, 0}), line({0, 3, 0}, {20, 3, 0})}, 5.0);
+  EXPECT_DOUBLE_EQ(width.at({10.0, 1.5, 0.0}, kUp, 2.0), 2.0);
+  EXPECT_NEAR(width.at({10.0, 1.5, 0.0}, kUp, 5.0), 3.0, 0.01);
+  EXPECT_NEAR(width.at({10.0, 1.5, 0.0}, kUp), 3.0, 0.01);
 }
 
 TEST(MinLengthInChannels, TwoRowsAcrossAStripAreTooShort) {

@@ -46,7 +46,9 @@
 //   A strip 1 mm wide meshed at 5 mm cannot have elements longer than 1 mm across it, so its
 //   elements are judged at 1 mm (DESIGN.md: narrow features are kept, with smaller elements,
 //   judged against the size actually used there); next to a single curve, or in a corner of a
-//   right angle or more, the ball grows past the element and the target size applies.
+//   right angle or more, the ball grows past the element and the target size applies. The
+//   width is sought only up to twice the element's length (a wider channel cannot excuse it):
+//   an element no channel excuses is judged, and reported, at the target size.
 // - Sharp corners: where the original surface spans less than the triangle minimum angle between
 //   two of those curves at a point (a wing rib's trailing edge, two seams meeting at 15 degrees),
 //   every mesh has an element with that angle there. A triangle that fills such a corner (its two
@@ -276,7 +278,8 @@ struct QualityReport {
   /// Per face: the size its minimum length is judged against, targetSize or the width of the
   /// narrow channel it lies in (when channel curves were given).
   std::vector<double> judgedSize;
-  /// Faces judged against a channel narrower than targetSize (minimum length only).
+  /// Faces whose minimum length a channel narrower than targetSize excuses (see the top of the
+  /// file).
   std::size_t narrowChannelElements = 0;
   /// Triangles filling a corner of the original sharper than the triangle angle limit, judged by
   /// their other two angles (see the top of the file; only with an original and its curves).

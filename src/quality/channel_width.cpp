@@ -35,6 +35,20 @@ ChannelWidth::ChannelWidth(const std::vector<MeshCurve>& curves, double cap)
     for (std::size_t i = 0; i < count; ++i)
       segments_.push_back({curve.points[i], curve.points[(i + 1) % n]});
   }
+  // A segment on two curves (a seam between two sheets) once: it bounds the channel alike.
+  for (auto& [a, b] : segments_)
+    if (b < a) std::swap(a, b);
+  std::sort(segments_.begin(), segments_.end());
+  segments_.erase(std::unique(segments_.begin(), segments_.end()), segments_.end());
+  // Cells no larger than the median segment: queries near short elements (reaching about their
+  // length) then look at few segments, even where the cap is many elements wide.
+  if (!segments_.empty()) {
+    std::vector<double> lengths;
+    for (const auto& [a, b] : segments_) lengths.push_back(distance(a, b));
+    std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+    const double median = lengths[lengths.size() / 2];
+    if (median > 0.0) cell_ = std::min(cell_, median);
+  }
   for (std::uint32_t s = 0; s < segments_.size(); ++s) {
     const auto& [a, b] = segments_[s];
     const double samples = std::ceil(distance(a, b) / (0.5 * cell_));
@@ -94,17 +108,22 @@ double ChannelWidth::clearance(const Vec3& p, const std::vector<std::uint32_t>& 
 }
 
 double ChannelWidth::at(const Vec3& point, const Vec3& normal) const {
-  const double reach = 0.5 * cap_;
+  return at(point, normal, cap_);
+}
+
+double ChannelWidth::at(const Vec3& point, const Vec3& normal, double cap) const {
+  cap = std::min(cap, cap_);
+  const double reach = 0.5 * cap;
   // Every centre tried lies within `reach` of the point, so its nearest segments within reach
   // lie within twice that.
   const std::vector<std::uint32_t> near = segmentsNear(point, 2.0 * reach);
   double radius = clearance(point, near);
-  if (!(radius < reach)) return cap_;
+  if (!(radius < reach)) return cap;
   // The plane the centre moves in: normal to `normal` (any plane when it is zero).
   const auto [u, v] = planeBasis(norm(normal) > 0.0 ? normalized(normal) : Vec3{0.0, 0.0, 1.0});
   Vec3 centre = point;
-  double step = std::max(radius, kStepTolerance * cap_);
-  for (int s = 0; s < kMaxSearchSteps && step >= kStepTolerance * cap_; ++s) {
+  double step = std::max(radius, kStepTolerance * cap);
+  for (int s = 0; s < kMaxSearchSteps && step >= kStepTolerance * cap; ++s) {
     Vec3 bestCentre = centre;
     double bestRadius = radius;
     for (int k = 0; k < kDirections; ++k) {
@@ -119,13 +138,13 @@ double ChannelWidth::at(const Vec3& point, const Vec3& normal) const {
     if (bestRadius > radius) {
       centre = bestCentre;
       radius = bestRadius;
-      if (!(radius < reach)) return cap_;
+      if (!(radius < reach)) return cap;
       step = std::min(2.0 * step, reach);
     } else {
       step *= 0.5;
     }
   }
-  return std::min(cap_, 2.0 * radius);
+  return std::min(cap, 2.0 * radius);
 }
 
 }  // namespace voxremesh::quality

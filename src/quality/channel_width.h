@@ -17,7 +17,8 @@ namespace voxremesh::quality {
 /// one within a fixed reach, and the width of the channel a point lies in.
 class ChannelWidth {
  public:
-  /// Indexes every segment of `curves` (closed curves include their closing segment).
+  /// Indexes every segment of `curves` (closed curves include their closing segment) in a grid of
+  /// cells half the cap wide, or as wide as the median segment where that is less.
   /// @param cap  the largest width of interest (> 0, finite): widths are measured up to it
   /// Never throws but bad_alloc.
   ChannelWidth(const std::vector<MeshCurve>& curves, double cap);
@@ -28,6 +29,10 @@ class ChannelWidth {
   /// In a strip between two curves this is the strip's width; next to a single curve, or in a
   /// corner wider than a right angle, the ball grows past the point and the width is large.
   double at(const geom::Vec3& point, const geom::Vec3& normal) const;
+
+  /// As at(point, normal), with the ball sought only up to `cap` (at most the constructor's):
+  /// `cap` when the channel is at least that wide. A smaller cap searches fewer segments.
+  double at(const geom::Vec3& point, const geom::Vec3& normal, double cap) const;
 
  private:
   /// The segments that may come within `reach` of `p` (sorted, without repeats).

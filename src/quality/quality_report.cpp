@@ -151,7 +151,9 @@ void addMeshCriterion(QualityReport& report, Criterion criterion, double limit,
 namespace {
 
 /// Per face, the size its minimum length is judged against: the target size, or the width of the
-/// channel it lies in where that is narrower and the face is too short for the target size.
+/// channel it lies in where the face is too short for the target size and the channel narrow
+/// enough to excuse it (narrower than twice its length: a wider channel would not, and is not
+/// measured beyond that).
 std::vector<double> judgedSizes(const QuadMesh& mesh, const std::vector<ElementQuality>& values,
                                 const QualitySettings& s, const std::vector<MeshCurve>* channels) {
   using namespace geom;  // NOLINT: the vector operators
@@ -176,7 +178,10 @@ std::vector<double> judgedSizes(const QuadMesh& mesh, const std::vector<ElementQ
                         const auto& p = mesh.points;
                         const Vec3 normal = elementNormal(p[face[0]], p[face[1]], p[face[2]],
                                                           p[face[triangle ? 2 : 3]], triangle);
-                        sizes[shortFaces[i]] = std::min(s.targetSize, width.at(centroid, normal));
+                        // Only a channel narrower than twice the face's length excuses it.
+                        const double cap = 2.0 * values[shortFaces[i]].minLength;
+                        const double channel = width.at(centroid, normal, cap);
+                        if (channel < cap) sizes[shortFaces[i]] = channel;
                       }
                     });
   return sizes;
