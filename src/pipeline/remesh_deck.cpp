@@ -470,14 +470,18 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
     fixed.insert(fixed.end(), newlyKept.begin(), newlyKept.end());
     std::sort(fixed.begin(), fixed.end());
   }
-  // A kept part reports the quality of what it writes back: its original shells.
+  // A kept part reports the quality of what it writes back: its original shells. Judging them
+  // never stops the deck (out of memory, say): the part then reports its last attempt.
   arena.execute([&] {
     tbb::parallel_for(std::size_t(0), plans.size(), [&](std::size_t i) {
       RemeshedPart& part = report.parts[i];
       if (part.status != PartStatus::Kept) return;
-      part.acceptance = pipeline::keptPartQuality(models[i], plans[i], settings);
-      part.quads = part.acceptance.quads;
-      part.trias = part.acceptance.trias;
+      try {
+        part.acceptance = pipeline::keptPartQuality(models[i], plans[i], settings);
+        part.quads = part.acceptance.quads;
+        part.trias = part.acceptance.trias;
+      } catch (const std::exception&) {
+      }
     });
   });
   std::vector<QuadMesh> accepted;
