@@ -194,11 +194,25 @@ bool forcedByCorner(Criterion c) {
 }
 
 /// Per face, 1 for a triangle filling a corner of `original` sharper than the triangle angle
-/// limit (cornerFillingTriangles); none without an original or its curves.
-std::vector<std::uint8_t> sharpCornerTriangles(const QuadMesh& mesh, const QuadMesh* original,
+/// limit (cornerFillingTriangles); none without an original or its curves, and none (the
+/// corners not sought) where no triangle fails a criterion such a corner could excuse.
+std::vector<std::uint8_t> sharpCornerTriangles(const QuadMesh& mesh,
+                                               const std::vector<ElementQuality>& values,
+                                               const QuadMesh* original,
                                                const std::vector<MeshCurve>* channels,
                                                const QualitySettings& s) {
-  if (!original || !channels) return std::vector<std::uint8_t>(mesh.faces.size(), 0);
+  std::vector<std::uint8_t> none(mesh.faces.size(), 0);
+  if (!original || !channels) return none;
+  bool excusable = false;
+  for (std::size_t f = 0; f < mesh.faces.size() && !excusable; ++f) {
+    if (cornerCount(mesh.faces[f]) != 3) continue;
+    for (int c = 0; c < kElementCriterionCount && !excusable; ++c) {
+      const auto criterion = static_cast<Criterion>(c);
+      excusable = forcedByCorner(criterion) && fails(values[f].*valueOf(criterion, s),
+                                                     limitOf(criterion, s), kRules[c].isMaximum);
+    }
+  }
+  if (!excusable) return none;
   quality::RidgeEdges ridges(channels);
   return quality::cornerFillingTriangles(
       mesh, quality::sharpCorners(*original, ridges, s.minTriaAngleDeg), s.minTriaAngleDeg,
@@ -224,7 +238,8 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
   report.judgedSize = judgedSizes(mesh, report.elementValues, s, channels);
   for (double size : report.judgedSize)
     if (size < s.targetSize) ++report.narrowChannelElements;
-  const std::vector<std::uint8_t> fillsCorner = sharpCornerTriangles(mesh, original, channels, s);
+  const std::vector<std::uint8_t> fillsCorner =
+      sharpCornerTriangles(mesh, report.elementValues, original, channels, s);
   report.sharpCornerElements =
       std::size_t(std::count(fillsCorner.begin(), fillsCorner.end(), std::uint8_t(1)));
   for (int c = 0; c < kElementCriterionCount; ++c) {

@@ -1,12 +1,12 @@
 // sharpCorners and cornerFillingTriangles (sharp_corners.h).
 #include "quality/sharp_corners.h"
 
-#include "geometry/disjoint_sets.h"
-
 #include <algorithm>
 #include <cmath>
 #include <tuple>
 #include <utility>
+
+#include "geometry/disjoint_sets.h"
 
 namespace voxremesh::quality {
 
@@ -29,10 +29,6 @@ bool fills(const SharpCorner& corner, const Vec3& u, const Vec3& v) {
   const auto near = [&](const Vec3& edge, const Vec3& side) { return angleDeg(edge, side) < half; };
   return (near(u, corner.side1) && near(v, corner.side2)) ||
          (near(u, corner.side2) && near(v, corner.side1));
-}
-
-bool pointLess(const Vec3& a, const Vec3& b) {
-  return std::tie(a[0], a[1], a[2]) < std::tie(b[0], b[1], b[2]);
 }
 
 }  // namespace
@@ -107,7 +103,7 @@ std::vector<SharpCorner> sharpCorners(const QuadMesh& surface, RidgeEdges& ridge
     i = j;
   }
   std::sort(corners.begin(), corners.end(), [](const SharpCorner& a, const SharpCorner& b) {
-    return pointLess(a.point, b.point) || (a.point == b.point && a.angleDeg < b.angleDeg);
+    return std::tie(a.point, a.angleDeg) < std::tie(b.point, b.angleDeg);
   });
   return corners;
 }
