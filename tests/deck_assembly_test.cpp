@@ -486,6 +486,55 @@ TEST(DeckAssembly, NastranSetAndSpcListsCoverTheSameRegionOfTheNewMesh) {
   EXPECT_EQ(listed("SPC1,88,123,", true), side) << out;
 }
 
+TEST(DeckAssembly, ALongSetListCoversTheNewMeshPastItsFourthLine) {
+  // A SET1 as a spline's structural grids are listed: 40 grids off the plate (101..140) on its
+  // first five lines, then the plate's 9 grids on the sixth and seventh (data fields 40 to 48).
+  // The plate is remeshed: the set must list the 40 grids and the 16 new ones, and no old grid
+  // of the plate may stay behind, kept for a reference that could not be rewritten.
+  std::string cards;
+  char line[96];
+  for (int n = 101; n <= 140; ++n) {
+    std::snprintf(line, sizeof line, "GRID    %8d        %8.1f%8.1f%8.1f\n", n, double(n), 5.0,
+                  0.0);
+    cards += line;
+  }
+  std::string set = "SET1          77";
+  for (int k = 0; k < 49; ++k) {
+    if (k > 0 && k % 8 == 7) set += "\n        ";
+    std::snprintf(line, sizeof line, "%8d", k < 40 ? 101 + k : k - 39);
+    set += line;
+  }
+  const auto dir = scratchDir("assembly_nastran_long_set");
+  writeText(dir / "in.bdf", nastranPlateDeck(cards + set + "\n"));
+  FeModel model = readDeck(dir / "in.bdf");
+  const AssemblyReport report = replacePartMeshes(model, {plateMesh(3, 1)});
+  EXPECT_EQ(report.removedNodes, 9u);
+  EXPECT_TRUE(report.unmapped.empty());
+  EXPECT_EQ(report.keptOldNodes, 0u);
+  writeDeck(model, dir / "out.bdf");
+  const FeModel back = readDeck(dir / "out.bdf");
+  std::set<Id> expected;
+  for (const Node& node : back.nodes) expected.insert(node.id);
+  // The set's members in the written deck: the integers of its lines after the card's name
+  // and ID, up to the next card.
+  const std::string out = readText(dir / "out.bdf");
+  std::set<Id> listed;
+  std::size_t at = out.find("SET1          77");
+  ASSERT_NE(at, std::string::npos) << out;
+  for (bool first = true; at < out.size(); first = false) {
+    const std::size_t end = out.find('\n', at);
+    const std::string row = out.substr(at, end - at);
+    if (!first && row[0] != ' ') break;
+    for (std::size_t c = first ? 16 : 8; c < std::min<std::size_t>(row.size(), 72); c += 8) {
+      const std::string token = row.substr(c, 8);
+      if (token.find_first_not_of(' ') != std::string::npos) listed.insert(std::stoll(token));
+    }
+    at = end + 1;
+  }
+  EXPECT_EQ(listed, expected) << out;
+  EXPECT_EQ(listed.size(), 56u);
+}
+
 TEST(DeckAssembly, PressureLoadsOnRemovedShellsGoToTheNewShellsOnThem) {
   // A 2 x 2 plate of unit quads (shells 1..4) remeshed as 4 x 4 quads of side 1/2. PLOAD4 of 5.0
   // on shell 1 and of 7.0 (with a continuation line) on shell 4: each new shell whose centroid

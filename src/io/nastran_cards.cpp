@@ -114,23 +114,20 @@ bool markersMatch(std::string_view parentMarker, std::string_view continuationMa
 
 void CardFields::start(const std::string* file, std::size_t lineNumber, std::string_view line) {
   file_ = file;
-  size_ = 0;
-  lineCount_ = 1;
-  lines_[0] = line;
-  lineNumbers_[0] = lineNumber;
+  fields_.clear();
+  lineOf_.clear();
+  lines_.assign(1, line);
+  lineNumbers_.assign(1, lineNumber);
+  if (scratch_.empty()) scratch_.emplace_back();
   splitLine(line, false, split_, scratch_[0]);
   append(split_, 0);
 }
 
 void CardFields::addContinuation(std::size_t lineNumber, std::string_view line) {
-  if (lineCount_ == kMaxLines)
-    throw InputError(*file_, lineNumber,
-                     "more than " + std::to_string(kMaxLines) + " lines in one " +
-                         std::string(cardName(lines_[0]).name) + " card",
-                     std::string(line));
-  const std::size_t index = lineCount_++;
-  lines_[index] = line;
-  lineNumbers_[index] = lineNumber;
+  const std::size_t index = lines_.size();
+  lines_.push_back(line);
+  lineNumbers_.push_back(lineNumber);
+  if (scratch_.size() <= index) scratch_.emplace_back();
   splitLine(line, true, split_, scratch_[index]);
   if (!markersMatch(lastMarker_, split_.head))
     throw InputError(*file_, lineNumber,
@@ -149,21 +146,12 @@ void CardFields::append(const LineFields& fields, std::size_t lineIndex) {
                          "'); put fields after the 9th on a continuation line",
                      std::string(lines_[lineIndex]));
   // A small-field line starts a new group of 8; a large-field line fills half of one.
-  const std::size_t target = fields.large ? size_ : (size_ + 7) / 8 * 8;
-  while (size_ < target && size_ < kCapacity) {
-    fields_[size_] = {};
-    lineOf_[size_++] = static_cast<std::uint8_t>(lineIndex);
-  }
+  const std::size_t target = fields.large ? fields_.size() : (fields_.size() + 7) / 8 * 8;
+  fields_.resize(target);
+  lineOf_.resize(target, lineIndex);
   for (std::size_t i = 0; i < fields.count; ++i) {
-    if (size_ < kCapacity) {
-      fields_[size_] = fields.data[i];
-      lineOf_[size_++] = static_cast<std::uint8_t>(lineIndex);
-    } else if (!fields.data[i].empty()) {
-      throw InputError(*file_, lineNumbers_[lineIndex],
-                       "more data than a " + std::string(cardName(lines_[0]).name) +
-                           " card can hold ('" + std::string(fields.data[i]) + "')",
-                       std::string(lines_[lineIndex]));
-    }
+    fields_.push_back(fields.data[i]);
+    lineOf_.push_back(lineIndex);
   }
   lastMarker_ = fields.marker;
 }

@@ -13,8 +13,10 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace voxremesh::io::nastran {
 
@@ -57,36 +59,34 @@ void splitLine(std::string_view line, bool continuation, LineFields& out, std::s
 /// together: equal apart from a leading '+' or '*', compared case-insensitively, or either blank.
 bool markersMatch(std::string_view parentMarker, std::string_view continuationMarker);
 
-/// Collects the data fields of one card over its continuation lines, in small-field numbering.
-/// Reports malformed structure as InputError naming the file and line.
+/// Collects the data fields of one card over its continuation lines, in small-field numbering,
+/// as many as the card has (a SET1 or SPC1 may list hundreds of grids). Reports malformed
+/// structure as InputError naming the file and line. Its storage is kept from card to card.
 class CardFields {
  public:
-  /// Data fields a card may hold (4 small-field lines); more non-blank data is refused.
-  static constexpr std::size_t kCapacity = 32;
-
   /// Starts a card with its first line.
   /// @param file  the file name for error messages (must outlive this object's use)
   /// Throws InputError for a free-field line with data beyond field 10.
   void start(const std::string* file, std::size_t lineNumber, std::string_view line);
 
   /// Adds a continuation line.
-  /// Throws InputError when its marker does not match field 10 of the previous line, when it
-  /// carries more data than the card can hold, or for a free-field line with data beyond field 10.
+  /// Throws InputError when its marker does not match field 10 of the previous line, or for a
+  /// free-field line with data beyond field 10.
   void addContinuation(std::size_t lineNumber, std::string_view line);
 
   /// Data field k, trimmed; empty past the fields given.
   std::string_view operator[](std::size_t k) const {
-    return k < size_ ? fields_[k] : std::string_view{};
+    return k < fields_.size() ? fields_[k] : std::string_view{};
   }
   /// Number of data fields collected (blank ones included).
-  std::size_t size() const { return size_; }
+  std::size_t size() const { return fields_.size(); }
   /// Line number of data field k (of the first line when k is past the fields given).
   std::size_t lineOf(std::size_t k) const {
-    return k < size_ ? lineNumbers_[lineOf_[k]] : firstLine();
+    return k < fields_.size() ? lineNumbers_[lineOf_[k]] : firstLine();
   }
   /// Text of the line holding data field k (the first line when k is past the fields given).
   std::string_view lineTextOf(std::size_t k) const {
-    return k < size_ ? lines_[lineOf_[k]] : lines_[0];
+    return k < fields_.size() ? lines_[lineOf_[k]] : lines_[0];
   }
   /// Line number and text of the card's first line.
   std::size_t firstLine() const { return lineNumbers_[0]; }
@@ -94,21 +94,20 @@ class CardFields {
   /// Field 10 of the last line: a continuation the card announces.
   std::string_view pendingMarker() const { return lastMarker_; }
   /// True when the last line was the first half of a large-field pair.
-  bool endsInHalfLine() const { return size_ % 8 == 4; }
+  bool endsInHalfLine() const { return fields_.size() % 8 == 4; }
 
  private:
   /// Appends the data fields of a split line (a small-field line starts a new group of 8).
   void append(const LineFields& fields, std::size_t lineIndex);
 
-  static constexpr std::size_t kMaxLines = 16;
   const std::string* file_ = nullptr;
-  std::array<std::string_view, kCapacity> fields_{};
-  std::array<std::uint8_t, kCapacity> lineOf_{};
-  std::array<std::string_view, kMaxLines> lines_{};
-  std::array<std::size_t, kMaxLines> lineNumbers_{};
-  std::array<std::string, kMaxLines> scratch_{};
-  std::size_t lineCount_ = 0;
-  std::size_t size_ = 0;
+  std::vector<std::string_view> fields_;
+  std::vector<std::size_t> lineOf_;  ///< per field, its line's index in lines_
+  std::vector<std::string_view> lines_;
+  std::vector<std::size_t> lineNumbers_;
+  /// Per line, its tab-expanded text (splitLine); a deque, so that the views into earlier lines'
+  /// text stay valid while lines are added.
+  std::deque<std::string> scratch_;
   std::string_view lastMarker_;
   LineFields split_;
 };

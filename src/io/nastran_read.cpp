@@ -10,6 +10,7 @@
 #include <cctype>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <string>
 #include <string_view>
@@ -456,7 +457,7 @@ class Reader {
 
   /// Refuses non-blank data in fields [from, to) (to = the card's end by default).
   void requireBlank(const FileContext& file, std::size_t from, const char* layout,
-                    std::size_t to = CardFields::kCapacity) const {
+                    std::size_t to = std::numeric_limits<std::size_t>::max()) const {
     for (std::size_t k = from; k < std::min(to, card_.size()); ++k)
       if (!card_[k].empty())
         fieldError(file, k,

@@ -571,10 +571,11 @@ std::string remeshReportJson(const RemeshReport& report) {
   out += "\n  ],\n  \"unmapped\": [";
   for (std::size_t i = 0; i < assembly.unmapped.size(); ++i) {
     const UnmappedReference& ref = assembly.unmapped[i];
-    std::snprintf(buffer, sizeof buffer, "%s\n    {\"keyword\": %s, \"line\": %zu, \"node\": %lld}",
+    std::snprintf(buffer, sizeof buffer, "%s\n    {\"keyword\": %s, \"line\": %zu, \"node\": %lld, ",
                   i ? "," : "", json::quote(ref.keyword).c_str(), ref.line,
                   static_cast<long long>(ref.node));
     out += buffer;
+    out += "\"reason\": " + json::quote(ref.reason) + "}";
   }
   // Seams: every pair of parts that shared nodes before or after, with both counts.
   out += "\n  ],\n  \"seams\": [";
