@@ -87,6 +87,28 @@ TEST(JunctionNodes, ACurveWithASpacingOfItsOwnIsSampledAtIt) {
   EXPECT_EQ(nodes.edge(narrow.points[0], narrow.points[1])->points.size(), 5u);
 }
 
+TEST(JunctionNodes, ACurveWithACountOfItsOwnHasThatManyPiecesSpreadOverItsSpans) {
+  // An L of legs 6 and 12 (its corner an anchor) at spacing 4 would get 2 + 3 pieces; with a
+  // count of 7 (the side across a narrow sheet has 7) each leg gets one and the other 5 are
+  // spread by length (1.67 and 3.33, the larger remainder first): 3 and 4 pieces, 2 and 3 inner
+  // nodes, the corner a node.
+  VolumeCurve curve;
+  curve.points = {{0, 0, 0}, {6, 0, 0}, {6, 12, 0}};
+  curve.nodeCount = 7;
+  const extract::JunctionNodes nodes({curve}, 4.0, 0.8);
+  EXPECT_TRUE(nodes.isNodePoint(curve.points[1]));
+  ASSERT_NE(nodes.edge(curve.points[0], curve.points[1]), nullptr);
+  ASSERT_NE(nodes.edge(curve.points[1], curve.points[2]), nullptr);
+  EXPECT_EQ(nodes.edge(curve.points[0], curve.points[1])->points.size(), 2u);
+  EXPECT_EQ(nodes.edge(curve.points[1], curve.points[2])->points.size(), 3u);
+  // A count equal to its segments keeps its points, whatever the spacing.
+  VolumeCurve kept = curve;
+  kept.nodeCount = 2;
+  const extract::JunctionNodes same({kept}, 1.0, 0.2);
+  EXPECT_TRUE(same.edge(kept.points[0], kept.points[1])->points.empty());
+  EXPECT_TRUE(same.edge(kept.points[1], kept.points[2])->points.empty());
+}
+
 TEST(JunctionNodes, AnEvenPieceEndingOnACurvePointButForRoundingEndsOnIt) {
   // 10 long in three pieces at 10/3: the first piece ends 1e-14 short of the curve point there.
   // That point is the node (every sheet along the curve then has it), not a node 1e-14 from it

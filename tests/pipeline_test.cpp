@@ -248,6 +248,56 @@ TEST(Pipeline, ANarrowStripAsksItsSeamForItsRowLength) {
   EXPECT_LE(nodesShared(model), 27u);
 }
 
+/// A quarter ring 2 wide (part 2, radius 30 to 32) between a quarter ring inside it (part 1, radius
+/// 10 to 30) and one outside it (part 3, radius 32 to 52), flat; 120 quads round, 0.5 across.
+FeModel stripBetweenRings() {
+  FeModel model;
+  const auto node = [](int i, int j) { return Id(1 + j * 121 + i); };
+  for (int j = 0; j <= 84; ++j)
+    for (int i = 0; i <= 120; ++i) {
+      const double r = 10.0 + 0.5 * j, angle = 0.5 * M_PI * i / 120.0;
+      test::addNode(model, node(i, j), r * std::cos(angle) + 0.13, r * std::sin(angle) + 0.29,
+                    0.41);
+    }
+  Id shell = 1;
+  for (int j = 0; j < 84; ++j)
+    for (int i = 0; i < 120; ++i)
+      test::addShell(model, shell++,
+                     j < 40   ? 1
+                     : j < 44 ? 2
+                              : 3,
+                     {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)});
+  return model;
+}
+
+TEST(Pipeline, ARingBetweenSeamsOfDifferentLengthsIsOneRowOfQuads) {
+  // At size 3 the middle ring is meshed from its boundary: one row of quads across it. Its seams
+  // are 47.1 and 50.3 long: nodes 3 apart would cut them into 16 and 17 pieces, and its row
+  // would need a triangle. The counts of the two seams are matched across the ring (the inner
+  // one gets 17 pieces too), so that its row is quads only.
+  FeModel model = stripBetweenRings();
+  RemeshSettings settings;
+  settings.targetSize = 3.0;
+  const RemeshReport report = remeshDeck(model, settings);
+  for (const RemeshedPart& part : report.parts)
+    EXPECT_NE(part.status, PartStatus::Kept) << part.plan.part << ": " << part.reason;
+  std::size_t quads = 0, trias = 0;
+  std::set<Id> inner, outer;
+  const std::unordered_map<Id, std::size_t> index = model.nodeIndex();
+  for (const Shell& shell : model.shells) {
+    if (shell.part != 2) continue;
+    (shell.nodeCount == 4 ? quads : trias) += 1;
+    for (int c = 0; c < shell.nodeCount; ++c) {
+      const Id id = shell.nodes[std::size_t(c)];
+      const auto& xyz = model.nodes[index.at(id)].xyz;
+      (std::hypot(xyz[0] - 0.13, xyz[1] - 0.29) < 31.0 ? inner : outer).insert(id);
+    }
+  }
+  EXPECT_EQ(trias, 0u);
+  EXPECT_EQ(inner.size(), outer.size());
+  EXPECT_EQ(quads + 1, inner.size());
+}
+
 /// The report of one part of a deck remeshed alone at the default settings (the other parts
 /// kept).
 RemeshedPart remeshOnePart(const std::string& path, Id part, double size = 0.0) {

@@ -108,9 +108,9 @@ QuadMesh splitPoint() {
   return mesh;
 }
 
-/// A 6 x 6 grid whose point (3, 3) is doubled: the two faces above it use a copy 0.05 higher, and
+/// A 6 x 6 grid whose point (3, 3) is doubled: the two faces above it use a copy `gap` higher, and
 /// two sliver triangles (left and right of the pair) fill the gap. Every other point is fixed.
-QuadMesh doubledPoint() {
+QuadMesh doubledPoint(double gap = 0.05) {
   constexpr int n = 6;
   QuadMesh mesh = voxremesh::test::unitGrid(n);
   auto id = [](int i, int j) { return CornerIndex(j * (n + 1) + i); };
@@ -118,7 +118,7 @@ QuadMesh doubledPoint() {
   for (CornerIndex v = 0; v < mesh.points.size(); ++v)
     if (v != low) mesh.constraints[v] = {PointRole::Corner, voxremesh::kNoCurve};
   const CornerIndex high = CornerIndex(mesh.points.size());
-  mesh.points.push_back({3.0, 3.05, 0.0});
+  mesh.points.push_back({3.0, 3.0 + gap, 0.0});
   mesh.constraints.push_back({});
   for (auto& face : mesh.faces)
     if (face[0] == id(2, 3) || face[0] == id(3, 3))  // the two faces above the point
@@ -169,25 +169,40 @@ TEST(ReconnectFailingFaces, TakesOutAPointOfThreeQuadsWhoseCornersCannotPass) {
   expectOnThePlaneWithTheBoundaryKept(mesh, start);
 }
 
-TEST(ReconnectFailingFaces, CollapsesTheShortSideOfSliverTriangles) {
-  const QuadMesh start = doubledPoint();
+/// Expects reconnectFailingFaces to mend the two slivers of `start` (doubledPoint) under
+/// `settings` by making both copies one again: the grid's faces and points, nothing failing.
+void expectCopiesMadeOne(const QuadMesh& start, const voxremesh::QualitySettings& settings) {
   ASSERT_TRUE(eulerAndOriented(start).second);
-  // Triangles pass only when nearly equilateral: no position of the two copies between their
-  // fixed neighbours mends both slivers, nor does another cut; collapsing their short side does.
-  voxremesh::QualitySettings settings = unitCriteria();
-  settings.minTriaAngleDeg = 55.0;
   ASSERT_EQ(voxremesh::assessQuality(start, settings).failingAny, 2u);
   QuadMesh mesh = start;
   EXPECT_GE(voxremesh::reconnectFailingFaces(mesh, ReferenceSurface(voxremesh::test::unitGrid(6)),
                                              settings),
             1u);
   EXPECT_EQ(voxremesh::assessQuality(mesh, settings).failingAny, 0u);
-  // Both copies made one again: the grid's faces and points.
   EXPECT_EQ(mesh.faces.size(), 36u);
   EXPECT_EQ(mesh.points.size(), 49u);
   EXPECT_EQ(eulerAndOriented(mesh), eulerAndOriented(start));
   EXPECT_EQ(voxremesh::test::foldedCount(mesh), 0u);
   for (std::size_t v = 0; v < mesh.points.size(); ++v) EXPECT_EQ(mesh.points[v][2], 0.0) << v;
+}
+
+TEST(ReconnectFailingFaces, CollapsesTheShortSideOfSliverTriangles) {
+  // Triangles pass only when nearly equilateral: no position of the two copies between their
+  // fixed neighbours mends both slivers, nor does another cut; collapsing their short side does.
+  voxremesh::QualitySettings settings = unitCriteria();
+  settings.minTriaAngleDeg = 55.0;
+  expectCopiesMadeOne(doubledPoint(), settings);
+}
+
+TEST(ReconnectFailingFaces, CollapsesSliverTrianglesWhoseSidesAreLongEnough) {
+  // The copies 0.3 apart, the size 0.2: the slivers' sides pass the minimum length and their
+  // corners fail the minimum angle only. Collapsing a side is tried for them too.
+  voxremesh::QualitySettings settings = unitCriteria();
+  settings.targetSize = 0.2;
+  settings.minTriaAngleDeg = 55.0;
+  const QuadMesh start = doubledPoint(0.3);
+  ASSERT_EQ(voxremesh::assessQuality(start, settings).failing(voxremesh::Criterion::MinLength), 0u);
+  expectCopiesMadeOne(start, settings);
 }
 
 TEST(ReconnectFailingFaces, RecutsAPairCutAlongTheWrongDiagonal) {

@@ -256,7 +256,8 @@ std::size_t splitFailingQuads(QuadMesh& mesh, const QualitySettings& settings,
 /// hexagon cut into two quads along each of its diagonals: the corner an uneven count of rows
 /// leaves, which can split a right-angled corner of the outline in two), for a quad the collapse
 /// of either diagonal and, for a face failing the
-/// minimum length or with a degenerate corner, the collapse of each of its edges (a quad along the
+/// minimum length or the triangles' minimum angle or with a degenerate corner, the collapse of
+/// each of its edges (a quad along the
 /// edge becomes a triangle, a triangle along it goes), both under the constraint and manifold
 /// rules of the rhombic collapse. Each try is followed by one round of the pattern
 /// search of improveFailingElements (down to steps of a sixteenth of an edge) over the points of

@@ -113,6 +113,9 @@ struct Polyline {
   /// Junction curves only: the distance between the nodes placed along it, when the sheets on
   /// either side ask for less than the extraction's spacing (seamNodeSpacing); 0: the extraction's.
   double nodeSpacing = 0.0;
+  /// Junction curves only: the number of pieces its nodes cut it into, where it must match the
+  /// side across a narrow sheet's four-sided patch (seamNodeCounts); 0: from the spacing.
+  long nodeCount = 0;
 };
 
 /// One manifold, consistently oriented sheet (with boundary) of a part.

@@ -97,6 +97,7 @@ struct VolumeCurve {
   bool closed = false;
   bool keepPoints = false;   ///< junction curves: see Polyline::keepPoints (sheets.h)
   double nodeSpacing = 0.0;  ///< junction curves: see Polyline::nodeSpacing (sheets.h)
+  long nodeCount = 0;        ///< junction curves: see Polyline::nodeCount (sheets.h)
 };
 
 /// The volume of one part: the grids (behind a handle) plus the curves of its sheets.

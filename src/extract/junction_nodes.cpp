@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
+#include <utility>
 
 #include "geometry/chord_limit.h"
 
@@ -139,13 +140,42 @@ bool segmentsFitSpacing(const Walk& walk, double spacing) {
   return true;
 }
 
+/// The pieces of each span between anchors when an open curve is cut into `count` pieces in all:
+/// at least one per span, the rest by the spans' lengths (largest remainders first, then the
+/// earlier span).
+std::vector<long> spanPieces(const std::vector<double>& lengths, long count) {
+  const long spans = long(lengths.size());
+  std::vector<long> pieces(lengths.size(), 1);
+  double total = 0.0;
+  for (double length : lengths) total += length;
+  long left = count - spans;
+  if (left <= 0 || !(total > 0.0)) return pieces;
+  std::vector<std::pair<double, std::size_t>> remainders;
+  for (std::size_t k = 0; k < lengths.size(); ++k) {
+    const double share = double(left) * lengths[k] / total;
+    pieces[k] += long(std::floor(share));
+    remainders.emplace_back(share - std::floor(share), k);
+  }
+  for (long given : pieces) left -= given - 1;
+  std::stable_sort(remainders.begin(), remainders.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (std::size_t r = 0; left > 0 && r < remainders.size(); ++r, --left)
+    ++pieces[remainders[r].second];
+  return pieces;
+}
+
 /// The nodes of one curve in canonical order (closed: the first is not repeated).
 /// A curve that keeps its points (VolumeCurve::keepPoints), or whose points are already spaced
 /// as the sampling would space them (segmentsFitSpacing), has every point as a node and no other.
-std::vector<CurveNode> sampleCurve(const Walk& walk, bool keepPoints, double spacing,
+/// An open curve with a count of its own (`count` > 0) has every point as a node when it has
+/// that many segments, else that many pieces in all, spread over its spans between anchors by
+/// their lengths, with no far points added (the count must hold).
+std::vector<CurveNode> sampleCurve(const Walk& walk, bool keepPoints, long count, double spacing,
                                    double tolerance, double sagittaShare) {
   const std::size_t n = walk.points.size();
-  if (keepPoints || segmentsFitSpacing(walk, spacing)) {
+  if (walk.closed) count = 0;
+  const bool ownCount = count > 0;
+  if (keepPoints || (ownCount ? long(n) - 1 == count : segmentsFitSpacing(walk, spacing))) {
     std::vector<CurveNode> nodes;
     for (std::size_t i = 0; i < n; ++i) nodes.push_back({walk.arc[i], i});
     return nodes;
@@ -159,6 +189,13 @@ std::vector<CurveNode> sampleCurve(const Walk& walk, bool keepPoints, double spa
   }
   if (anchors.empty()) anchors.push_back(0);
   if (walk.closed) anchors.push_back(anchors.front() + n);  // back to the first anchor
+  std::vector<long> ownPieces;
+  if (ownCount) {
+    std::vector<double> lengths;
+    for (std::size_t k = 0; k + 1 < anchors.size(); ++k)
+      lengths.push_back(walk.arc[anchors[k + 1]] - walk.arc[anchors[k]]);
+    ownPieces = spanPieces(lengths, count);
+  }
   std::vector<CurveNode> nodes;
   for (std::size_t k = 0; k + 1 < anchors.size(); ++k) {
     const double from = walk.arc[anchors[k] % n] + (anchors[k] >= n ? walk.arc.back() : 0.0);
@@ -166,7 +203,7 @@ std::vector<CurveNode> sampleCurve(const Walk& walk, bool keepPoints, double spa
                           ? walk.arc[anchors[k + 1] - n] + walk.arc.back()
                           : walk.arc[anchors[k + 1]];
     const double length = to - from;
-    long pieces = std::max(1L, std::lround(length / spacing));
+    long pieces = ownCount ? ownPieces[k] : std::max(1L, std::lround(length / spacing));
     if (walk.closed && anchors.size() == 2) pieces = std::max(3L, pieces);
     std::vector<CurveNode> span{{from, anchors[k] % n}};
     for (long j = 1; j < pieces; ++j) span.push_back({from + length * double(j) / double(pieces)});
@@ -174,7 +211,7 @@ std::vector<CurveNode> sampleCurve(const Walk& walk, bool keepPoints, double spa
     for (std::size_t j = 0; j + 1 < span.size(); ++j) {
       nodes.push_back(span[j]);
       // Parameters beyond the closing point wrap around for the far-point search.
-      addFarPoints(walk, span[j], span[j + 1], tolerance, sagittaShare, nodes);
+      if (!ownCount) addFarPoints(walk, span[j], span[j + 1], tolerance, sagittaShare, nodes);
     }
     if (!walk.closed && k + 2 == anchors.size()) nodes.push_back(span.back());
   }
@@ -200,8 +237,8 @@ void JunctionNodes::add(const std::vector<VolumeCurve>& curves, double spacing, 
     // A curve with a spacing of its own keeps the tolerance's share of it.
     const double own =
         curve.nodeSpacing > 0.0 && std::isfinite(curve.nodeSpacing) ? curve.nodeSpacing : spacing;
-    const std::vector<CurveNode> nodes =
-        sampleCurve(walk, curve.keepPoints, own, tolerance * own / spacing, sagittaShare);
+    const std::vector<CurveNode> nodes = sampleCurve(walk, curve.keepPoints, curve.nodeCount, own,
+                                                     tolerance * own / spacing, sagittaShare);
     const std::size_t segments = walk.arc.size() - 1;
     std::vector<JunctionEdgeNodes> perEdge(segments);
     for (std::size_t s = 0; s < segments; ++s) perEdge[s].from = walk.at(s);

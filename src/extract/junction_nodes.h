@@ -18,6 +18,10 @@
 //   segment is already within a factor 1.5 of the spacing (the range of an even sampling's
 //   pieces), has every point as a node and no other: an original seam that fits the size stays
 //   as it was, and the nodes on the two sides of a narrow strip keep facing each other.
+// - An open curve with a count of its own (VolumeCurve::nodeCount: opposite sides of a narrow
+//   sheet's four-sided patch get the same count, seam_counts.h) is cut into that many pieces:
+//   its points when it has that many segments, else pieces spread over its spans between
+//   anchors by length, with no far points added.
 #pragma once
 
 #include <array>

@@ -439,13 +439,59 @@ std::vector<VolumeCurve> featureCurves(const Sheet& sheet) {
 
 }  // namespace
 
+namespace {
+
+/// Pins every node the junction curves of `sheet` prescribe (a curve point that is a node, or a
+/// node inside one of its edges) where `mesh` has a point (within 1e-6 of the spacing): a free
+/// point there (a grid node on a junction curve across a patch that does not cut it, a rung whose
+/// ends both lie on the boundary, sheet_patches.h) becomes fixed (role Corner), which
+/// optimisation does not move. Throws NarrowSheetRefusal when such a node is no point of the mesh.
+void requireJunctionNodes(const Sheet& sheet, const JunctionNodes& junctions, QuadMesh& mesh,
+                          double spacing) {
+  std::vector<std::pair<Vec3, std::size_t>> points;  // (position, mesh point), sorted
+  for (std::size_t p = 0; p < mesh.points.size(); ++p) points.emplace_back(mesh.points[p], p);
+  std::sort(points.begin(), points.end());
+  mesh.constraints.resize(mesh.points.size());
+  const double reach = 1e-6 * spacing;
+  const auto present = [&](const Vec3& p) {
+    for (auto it = std::lower_bound(
+             points.begin(), points.end(),
+             std::make_pair(Vec3{p[0] - reach, -HUGE_VAL, -HUGE_VAL}, std::size_t(0)));
+         it != points.end() && it->first[0] <= p[0] + reach; ++it)
+      if (distance(it->first, p) <= reach) {
+        PointConstraint& constraint = mesh.constraints[it->second];
+        if (constraint.role == PointRole::Free) constraint.role = PointRole::Corner;
+        return true;
+      }
+    return false;
+  };
+  for (const Polyline& curve : sheet.junctionCurves) {
+    const std::size_t n = curve.points.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3& a = sheet.points[curve.points[i]];
+      if (junctions.isNodePoint(a) && !present(a))
+        throw NarrowSheetRefusal("a junction node is no node of its mesh");
+      if (i + 1 == n && !curve.closed) break;
+      if (const JunctionEdgeNodes* inside =
+              junctions.edge(a, sheet.points[curve.points[(i + 1) % n]]))
+        for (const Vec3& p : inside->points)
+          if (!present(p)) throw NarrowSheetRefusal("a junction node is no node of its mesh");
+    }
+  }
+}
+
+}  // namespace
+
 QuadMesh meshNarrowSheet(const Sheet& sheet, const QuadMesh& surface,
                          const ReferenceSurface& reference, const JunctionNodes& junctions,
                          const NarrowSheetSettings& settings) {
   if (!(settings.spacing > 0.0) || !(settings.tolerance > 0.0) || !(settings.maxChord > 0.0))
     throw std::invalid_argument("meshNarrowSheet: spacing, tolerance and maxChord must be > 0");
   try {
-    return meshPatches(sheet, sheetPatches(sheet), surface, reference, junctions, settings);
+    QuadMesh mesh =
+        meshPatches(sheet, sheetPatches(sheet), surface, reference, junctions, settings);
+    requireJunctionNodes(sheet, junctions, mesh, settings.spacing);
+    return mesh;
   } catch (const NarrowSheetRefusal& refusal) {
     if (sheet.featureLines.empty()) throw;
     // Cut at the feature lines too (walls and cap of a box), with nodes on them shared by the
@@ -454,8 +500,10 @@ QuadMesh meshNarrowSheet(const Sheet& sheet, const QuadMesh& surface,
     withFeatures.add(featureCurves(sheet), settings.spacing, 0.2 * settings.spacing,
                      settings.sagittaShare);
     try {
-      return meshPatches(sheet, sheetPatches(sheet, true), surface, reference, withFeatures,
-                         settings);
+      QuadMesh mesh =
+          meshPatches(sheet, sheetPatches(sheet, true), surface, reference, withFeatures, settings);
+      requireJunctionNodes(sheet, junctions, mesh, settings.spacing);
+      return mesh;
     } catch (const NarrowSheetRefusal& second) {
       throw NarrowSheetRefusal(std::string(refusal.what()) + "; cut at its feature lines too, " +
                                second.what());

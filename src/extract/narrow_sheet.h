@@ -62,7 +62,8 @@ struct NarrowSheetSettings {
 /// @return the mesh, oriented as the sheet, part sheet.part
 /// Throws std::invalid_argument for settings not > 0; NarrowSheetRefusal (with the reason) when a
 /// patch is neither a disk nor a ring, a junction curve ends inside the sheet, a row across would
-/// have more than 400 boundary nodes, or no mesh of the nodes stays on the sheet.
+/// have more than 400 boundary nodes, no mesh of the nodes stays on the sheet, or a node of the
+/// sheet's junction curves is no node of its mesh (a curve across a patch that does not cut it).
 QuadMesh meshNarrowSheet(const Sheet& sheet, const QuadMesh& surface,
                          const ReferenceSurface& reference, const JunctionNodes& junctions,
                          const NarrowSheetSettings& settings);

@@ -271,8 +271,9 @@ std::vector<Edit> editsAt(const QuadMesh& mesh, const opt::Topology& t, std::uin
       edits.push_back(Edit{removed, {cut[0], cut[1]}, std::nullopt});
     }
   }
-  // A face with a sliver corner or a short side: each of its edges collapsed (both ends made one
-  // point), which turns it and its neighbour across the edge into triangles.
+  // A face with a short side, a degenerate corner or (a triangle) a sharp one: each of its edges
+  // collapsed (both ends made one point), which turns it and its neighbour across the edge into
+  // triangles.
   if (collapseEdges)
     for (int k = 0; k < n; ++k) {
       const CornerIndex u = face[std::size_t(k)], v = face[std::size_t((k + 1) % n)];
@@ -373,7 +374,8 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
       opt::Score before;
       for (const std::uint32_t g : n.faces) before += opt::faceScore(mesh, mesh.faces[g], settings);
       std::vector<Edit> edits{Edit{}};
-      const std::uint32_t shortOrSliver = (1u << unsigned(Criterion::MinLength)) | degenerate;
+      const std::uint32_t shortOrSliver = (1u << unsigned(Criterion::MinLength)) |
+                                          (1u << unsigned(Criterion::TriaMinAngle)) | degenerate;
       const std::vector<Edit> others =
           editsAt(mesh, t, f, original, (failures & shortOrSliver) != 0);
       edits.insert(edits.end(), others.begin(), others.end());

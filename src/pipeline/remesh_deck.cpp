@@ -375,12 +375,16 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
   const std::vector<FeModel> models = partModels(deck, plans, mergedNodes);
   const std::vector<std::vector<std::size_t>> neighbours = planNeighbours(models, plans);
   std::vector<double> junctionSpacing;
+  const std::vector<std::unordered_set<Id>> hardPoints = partHardPoints(deck, plans);
   std::unordered_map<Id, double> seamSpacing;
+  pipeline::SeamCounts seamCounts;
   const auto updateSpacing = [&] {
     junctionSpacing = junctionSpacings(models, plans);
     arena.execute([&] {
       seamSpacing =
           pipeline::seamNodeSpacing(models, plans, junctionSpacing, keptFromStart, settings);
+      seamCounts = pipeline::seamNodeCounts(models, plans, junctionSpacing, keptFromStart,
+                                            seamSpacing, hardPoints, settings);
     });
   };
   updateSpacing();
@@ -401,7 +405,6 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
   // mayHalve allows, the first round is done again with those at half their size; its results
   // stay group by group (takeHalvedGroups) where more parts pass so, none that passed is lost
   // and no more seam points hang.
-  const std::vector<std::unordered_set<Id>> hardPoints = partHardPoints(deck, plans);
   RemeshSettings halvedSettings = settings;  // a halved part's retries stop at the same voxel
   halvedSettings.retries = std::max(0, settings.retries - 1);
   halvedSettings.finestVoxelShare = std::min(1.0, 2.0 * settings.finestVoxelShare);
@@ -414,7 +417,7 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
         const bool isFixed = std::binary_search(fixed.begin(), fixed.end(), plans[i].part);
         const pipeline::PartSurroundings surroundings{
             junctionSpacing[i], isFixed ? otherParts(models[i], plans[i].part) : fixed,
-            hardPoints[i], &seamSpacing};
+            hardPoints[i], &seamSpacing, &seamCounts};
         const bool halved = !fullSizeReason[i].empty();
         RemeshedPart result = pipeline::remeshPart(
             models[i], plans[i], halved ? halvedSettings : settings, surroundings, meshes[i],
@@ -571,9 +574,9 @@ std::string remeshReportJson(const RemeshReport& report) {
   out += "\n  ],\n  \"unmapped\": [";
   for (std::size_t i = 0; i < assembly.unmapped.size(); ++i) {
     const UnmappedReference& ref = assembly.unmapped[i];
-    std::snprintf(buffer, sizeof buffer, "%s\n    {\"keyword\": %s, \"line\": %zu, \"node\": %lld, ",
-                  i ? "," : "", json::quote(ref.keyword).c_str(), ref.line,
-                  static_cast<long long>(ref.node));
+    std::snprintf(buffer, sizeof buffer,
+                  "%s\n    {\"keyword\": %s, \"line\": %zu, \"node\": %lld, ", i ? "," : "",
+                  json::quote(ref.keyword).c_str(), ref.line, static_cast<long long>(ref.node));
     out += buffer;
     out += "\"reason\": " + json::quote(ref.reason) + "}";
   }

@@ -6,6 +6,7 @@
 #include <limits>
 #include <new>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -44,30 +45,20 @@ struct SheetPlan {
 /// What the sheets of one part must keep: per sheet, the hard points inside it (placeHardPoints).
 using SheetHardPoints = std::vector<std::vector<Point3>>;
 
-/// The spacing extraction places a part's junction nodes at: the one the settings ask for, else
-/// the part's (PartSurroundings::junctionSpacing).
-double extractJunctionSpacing(const RemeshSettings& settings, double junctionSpacing) {
-  return settings.extract.junctionSpacing > 0.0 ? settings.extract.junctionSpacing
-                                                : junctionSpacing;
-}
-
-/// The junction nodes of a sheet's junction curves, as extraction computes them (extract.cpp).
-extract::JunctionNodes sheetJunctionNodes(const Sheet& sheet, double spacing) {
-  std::vector<VolumeCurve> curves;
-  for (const Polyline& curve : sheet.junctionCurves) {
-    VolumeCurve world;
-    world.closed = curve.closed;
-    world.keepPoints = curve.keepPoints;
-    world.nodeSpacing = curve.nodeSpacing;
-    for (const PointIndex p : curve.points) world.points.push_back(sheet.points[p]);
-    curves.push_back(std::move(world));
-  }
-  return extract::JunctionNodes(curves, spacing, 0.2 * spacing, kChordSagittaShare);
+/// The element size a boundary-meshed sheet's mesh is judged against: its node spacing, or
+/// where the sheet is narrower, twice its narrowest element (LS-DYNA characteristic length),
+/// which a row of elements across a strip cannot make wider than the strip.
+double boundaryMeshSize(const QuadMesh& mesh, double spacing) {
+  double narrowest = std::numeric_limits<double>::infinity();
+  for (const ElementQuality& quality : elementQualities(mesh))
+    narrowest = std::min(narrowest, quality.minLength);
+  return std::min(spacing, 2.0 * narrowest);
 }
 
 /// One sheet's mesh from its boundary alone (narrow_sheet.h), nodes `spacing` apart along it;
 /// the hard points inside the sheet are snapped to nodes inside the mesh (a grid's); then, when
-/// `optimize` and settings.optimize, optimised at the spacing as a volume's mesh is.
+/// `optimize` and settings.optimize, optimised at the spacing as a volume's mesh is, its minimum
+/// length judged as the part's acceptance judges it (at boundaryMeshSize).
 /// Throws extract::NarrowSheetRefusal when the sheet cannot be meshed so, or a hard point finds
 /// no node inside the mesh within `spacing`.
 QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
@@ -93,6 +84,8 @@ QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
   if (optimize && settings.optimize) {
     OptimizeSettings optimizeSettings = settings.optimizeSettings;
     optimizeSettings.quality.targetSize = spacing;
+    // The other criteria, the distance and the edits' scale stay at the spacing.
+    optimizeSettings.quality.minLengthFactor *= boundaryMeshSize(mesh, spacing) / spacing;
     optimizeQuadMesh(mesh, original, optimizeSettings);
   }
   return mesh;
@@ -179,16 +172,6 @@ QuadMesh meshThroughVolume(const Sheet& sheet, const ReferenceSurface& original,
   } catch (const std::runtime_error&) {  // the first mesh stays
   }
   return mesh;
-}
-
-/// The element size a boundary-meshed sheet's mesh is judged against: its node spacing, or
-/// where the sheet is narrower, twice its narrowest element (LS-DYNA characteristic length),
-/// which a row of elements across a strip cannot make wider than the strip.
-double boundaryMeshSize(const QuadMesh& mesh, double spacing) {
-  double narrowest = std::numeric_limits<double>::infinity();
-  for (const ElementQuality& quality : elementQualities(mesh))
-    narrowest = std::min(narrowest, quality.minLength);
-  return std::min(spacing, 2.0 * narrowest);
 }
 
 /// One sheet's mesh through a volume of voxel `voxel`; where the extraction fails (the sheet too
@@ -361,24 +344,32 @@ std::vector<std::uint8_t> halveInsideCurves(std::vector<Sheet>& sheets,
       const double half = std::max(finest, now / 2);
       if (half >= now * (1 - 1e-9)) continue;
       curve.nodeSpacing = half;
+      if (curve.nodeCount > 0) curve.nodeCount *= 2;
       changed[k] = 1;
     }
   return changed;
 }
 
-/// The node spacing of every junction curve of `sheets`, sheet by sheet, in order.
-std::vector<double> junctionCurveSpacings(const std::vector<Sheet>& sheets) {
-  std::vector<double> spacings;
+/// How a junction curve's nodes are placed: its own spacing and count (Polyline::nodeSpacing,
+/// Polyline::nodeCount).
+using CurveSampling = std::pair<double, long>;
+
+/// The sampling of every junction curve of `sheets`, sheet by sheet, in order.
+std::vector<CurveSampling> junctionCurveSampling(const std::vector<Sheet>& sheets) {
+  std::vector<CurveSampling> samplings;
   for (const Sheet& sheet : sheets)
-    for (const Polyline& curve : sheet.junctionCurves) spacings.push_back(curve.nodeSpacing);
-  return spacings;
+    for (const Polyline& curve : sheet.junctionCurves)
+      samplings.emplace_back(curve.nodeSpacing, curve.nodeCount);
+  return samplings;
 }
 
-/// Gives the junction curves of `sheets` the spacings junctionCurveSpacings returned for them.
-void setJunctionCurveSpacings(std::vector<Sheet>& sheets, const std::vector<double>& spacings) {
+/// Gives the junction curves of `sheets` the samplings junctionCurveSampling returned for them.
+void setJunctionCurveSampling(std::vector<Sheet>& sheets,
+                              const std::vector<CurveSampling>& samplings) {
   std::size_t i = 0;
   for (Sheet& sheet : sheets)
-    for (Polyline& curve : sheet.junctionCurves) curve.nodeSpacing = spacings[i++];
+    for (Polyline& curve : sheet.junctionCurves)
+      std::tie(curve.nodeSpacing, curve.nodeCount) = samplings[i++];
 }
 
 /// The plans of a finer attempt: every sheet at half its size where that stays at `finest` or
@@ -464,6 +455,25 @@ std::vector<SheetPlan> planSheets(const std::vector<Sheet>& sheets,
 
 }  // namespace
 
+double extractJunctionSpacing(const RemeshSettings& settings, double junctionSpacing) {
+  return settings.extract.junctionSpacing > 0.0 ? settings.extract.junctionSpacing
+                                                : junctionSpacing;
+}
+
+extract::JunctionNodes sheetJunctionNodes(const Sheet& sheet, double spacing) {
+  std::vector<VolumeCurve> curves;
+  for (const Polyline& curve : sheet.junctionCurves) {
+    VolumeCurve world;
+    world.closed = curve.closed;
+    world.keepPoints = curve.keepPoints;
+    world.nodeSpacing = curve.nodeSpacing;
+    world.nodeCount = curve.nodeCount;
+    for (const PointIndex p : curve.points) world.points.push_back(sheet.points[p]);
+    curves.push_back(std::move(world));
+  }
+  return extract::JunctionNodes(curves, spacing, 0.2 * spacing, kChordSagittaShare);
+}
+
 RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const RemeshSettings& settings,
                         const PartSurroundings& surroundings, QuadMesh& mesh,
                         const StageCallback& stage) {
@@ -492,6 +502,7 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
   std::string sizeNote;
   const SheetHardPoints hardPoints = placeHardPoints(sheets, surroundings.hardPoints);
   if (surroundings.seamSpacing) setSeamSpacing(sheets, *surroundings.seamSpacing, junctionSpacing);
+  if (surroundings.seamCounts) setSeamCounts(sheets, *surroundings.seamCounts);
   std::vector<Point3> junctionPositions =
       junctionNodePositions(sheets, extractJunctionSpacing(settings, junctionSpacing));
   const std::vector<std::vector<std::uint8_t>> insideCurves =
@@ -561,7 +572,7 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
   try {
     for (int retry = 0; retry <= settings.retries; ++retry) {
       if (retry > 0) {
-        const std::vector<double> spacingsBefore = junctionCurveSpacings(sheets);
+        const std::vector<CurveSampling> samplingBefore = junctionCurveSampling(sheets);
         const std::vector<SheetPlan> plansBefore = plans;
         bool finer = false;
         try {
@@ -571,7 +582,7 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
         } catch (const extract::NarrowSheetRefusal&) {
           // A sheet meshed from its boundary cannot take its curves' closer nodes: all of them
           // keep theirs, and only the sizes are halved.
-          setJunctionCurveSpacings(sheets, spacingsBefore);
+          setJunctionCurveSampling(sheets, samplingBefore);
           plans = plansBefore;
           finer = halveSheetSizes(plans, sheets, hardPoints, plan, settings, junctionSpacing,
                                   finest, std::vector<std::uint8_t>(sheets.size(), 0));

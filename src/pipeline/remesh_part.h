@@ -10,6 +10,8 @@
 #include <unordered_set>
 #include <vector>
 
+#include "extract/junction_nodes.h"
+#include "pipeline/seam_counts.h"
 #include "voxremesh/pipeline.h"
 #include "voxremesh/quality.h"
 #include "voxremesh/reference_surface.h"
@@ -75,6 +77,14 @@ using StageCallback = std::function<void(const char* stage)>;
 
 using Point3 = std::array<double, 3>;
 
+/// The spacing extraction places a part's junction nodes at: the one the settings ask for
+/// (ExtractSettings::junctionSpacing), else `junctionSpacing` (PartSurroundings::junctionSpacing).
+double extractJunctionSpacing(const RemeshSettings& settings, double junctionSpacing);
+
+/// The nodes of a sheet's junction curves as extraction places them (extract.cpp): at `spacing`
+/// (> 0) or each curve's own spacing or count, chords within a fifth of the spacing.
+extract::JunctionNodes sheetJunctionNodes(const Sheet& sheet, double spacing);
+
 /// What a part's remesh must respect of the deck around it.
 struct PartSurroundings {
   double junctionSpacing = 0.0;  ///< the node spacing on the part's junction curves (> 0)
@@ -86,6 +96,9 @@ struct PartSurroundings {
   /// Per seam node, the spacing the sheets through it ask for (seamNodeSpacing); a junction curve
   /// whose nodes ask for less than junctionSpacing gets that (setSeamSpacing). Null: none.
   const std::unordered_map<Id, double>* seamSpacing = nullptr;
+  /// Per junction curve, the count of pieces it must have (seamNodeCounts, setSeamCounts).
+  /// Null: none.
+  const SeamCounts* seamCounts = nullptr;
 };
 
 /// Marks the junction curves of `sheets` that run along a part of `keptParts` (ascending IDs): a

@@ -77,6 +77,7 @@ VolumeCurve toWorld(const Sheet& sheet, const Polyline& line) {
   curve.closed = line.closed;
   curve.keepPoints = line.keepPoints;
   curve.nodeSpacing = line.nodeSpacing;
+  curve.nodeCount = line.nodeCount;
   curve.points.reserve(line.points.size());
   for (PointIndex p : line.points) {
     if (p >= sheet.points.size()) {

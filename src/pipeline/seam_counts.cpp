@@ -1,0 +1,242 @@
+// Node counts of junction curves facing each other across narrow sheets (seam_counts.h).
+#include "pipeline/seam_counts.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <exception>
+#include <map>
+#include <optional>
+
+#include "extract/narrow_sheet.h"
+#include "extract/sheet_patches.h"
+#include "geometry/vec3.h"
+#include "pipeline/remesh_part.h"
+#include "pipeline/seam_spacing.h"
+
+namespace voxremesh::pipeline {
+
+using namespace geom;  // NOLINT: the vector operators
+
+namespace {
+
+/// A patch's loop turns by more than this (degrees) at its corners, as mappedPatch decides.
+constexpr double kPatchCornerDeg = 45.0;
+
+/// The most passes over all pairs of sides when matching their counts (each pass raises the
+/// sides with fewer pieces; pairs tied into a cycle that cannot match stop here).
+constexpr int kMatchingPasses = 8;
+
+/// A side of a patch made of whole junction curves, in order: their keys.
+using CurveSide = std::vector<NodeEdge>;
+
+/// A junction curve as the ties see it: the pieces its spacing gives it and its length.
+struct TiedCurve {
+  long pieces = 1;
+  double length = 0.0;
+};
+
+/// What one part asks: pairs of sides facing each other across its narrow sheets' four-sided
+/// patches, and the pieces and length of each curve on such a side.
+struct CurveTies {
+  std::vector<std::pair<CurveSide, CurveSide>> pairs;
+  std::vector<std::pair<NodeEdge, TiedCurve>> curves;
+};
+
+/// The edge between two points of a sheet, by point index, lower first.
+std::pair<PointIndex, PointIndex> pointEdge(PointIndex a, PointIndex b) {
+  return {std::min(a, b), std::max(a, b)};
+}
+
+/// The number of pieces the nodes `junctions` places on an open curve cut it into.
+long sampledPieces(const Sheet& sheet, const Polyline& curve,
+                   const extract::JunctionNodes& junctions) {
+  long nodes = 0;
+  for (std::size_t i = 0; i < curve.points.size(); ++i) {
+    const auto& p = sheet.points[curve.points[i]];
+    nodes += junctions.isNodePoint(p) ? 1 : 0;
+    if (i + 1 == curve.points.size()) break;
+    if (const auto* inside = junctions.edge(p, sheet.points[curve.points[i + 1]]))
+      nodes += long(inside->points.size());
+  }
+  return std::max(1L, nodes - 1);
+}
+
+/// The indices into loop of the points where the closed loop turns by more than
+/// kPatchCornerDeg.
+std::vector<std::size_t> loopCorners(const Sheet& sheet, const std::vector<PointIndex>& loop) {
+  std::vector<std::size_t> corners;
+  const std::size_t n = loop.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3& p = sheet.points[loop[i]];
+    const Vec3 in = p - sheet.points[loop[(i + n - 1) % n]];
+    const Vec3 out = sheet.points[loop[(i + 1) % n]] - p;
+    if (norm(in) > 0.0 && norm(out) > 0.0 && angleDeg(in, out) > kPatchCornerDeg)
+      corners.push_back(i);
+  }
+  return corners;
+}
+
+/// Adds to `ties` the pairs of opposite sides of the sheet's four-sided one-loop patches where
+/// both sides are made of whole junction curves (a side with a free stretch adapts by itself; a
+/// side ending inside a curve is left alone).
+void tieOppositeCurves(const Sheet& sheet, CurveTies& ties) {
+  std::map<std::pair<PointIndex, PointIndex>, std::size_t> curveOfEdge;
+  for (std::size_t c = 0; c < sheet.junctionCurves.size(); ++c) {
+    const Polyline& curve = sheet.junctionCurves[c];
+    if (curve.closed) continue;
+    for (std::size_t i = 0; i + 1 < curve.points.size(); ++i)
+      curveOfEdge[pointEdge(curve.points[i], curve.points[i + 1])] = c;
+  }
+  std::vector<extract::SheetPatch> patches;
+  try {
+    patches = extract::sheetPatches(sheet);
+  } catch (const extract::NarrowSheetRefusal&) {
+    return;
+  }
+  for (const extract::SheetPatch& patch : patches) {
+    if (patch.loops.size() != 1) continue;
+    const std::vector<PointIndex>& loop = patch.loops[0];
+    const std::vector<std::size_t> corners = loopCorners(sheet, loop);
+    if (corners.size() != 4) continue;
+    std::array<std::optional<CurveSide>, 4> sides;
+    for (std::size_t k = 0; k < 4; ++k) {
+      // The curves along the side, each with the segments the side runs along it.
+      std::vector<std::pair<std::size_t, std::size_t>> run;  // (curve, segments)
+      bool junctionsOnly = true;
+      for (std::size_t i = corners[k]; i != corners[(k + 1) % 4]; i = (i + 1) % loop.size()) {
+        const auto it = curveOfEdge.find(pointEdge(loop[i], loop[(i + 1) % loop.size()]));
+        if (it == curveOfEdge.end()) {
+          junctionsOnly = false;
+          break;
+        }
+        if (run.empty() || run.back().first != it->second) run.emplace_back(it->second, 0);
+        ++run.back().second;
+      }
+      if (!junctionsOnly || run.empty()) continue;
+      CurveSide side;
+      for (const auto& [curve, segments] : run) {
+        if (segments + 1 != sheet.junctionCurves[curve].points.size()) break;
+        side.push_back(curveKey(sheet, sheet.junctionCurves[curve]));
+      }
+      if (side.size() == run.size()) sides[k] = std::move(side);
+    }
+    for (std::size_t k = 0; k < 2; ++k)
+      if (sides[k] && sides[k + 2]) ties.pairs.emplace_back(*sides[k], *sides[k + 2]);
+  }
+}
+
+/// The ties of one part (see CurveTies); none when its sheets cannot be built.
+CurveTies partTies(const FeModel& model, const PartPlan& plan, double junctionSpacing,
+                   const std::unordered_map<Id, double>& seamSpacing,
+                   const std::unordered_set<Id>& hardPoints, const RemeshSettings& settings) {
+  CurveTies ties;
+  std::vector<Sheet> sheets;
+  try {
+    sheets = buildSheets(model, plan.part, settings.sheets);
+  } catch (const std::exception&) {
+    return ties;  // remeshPart builds them again and reports why they cannot be
+  }
+  placeHardPoints(sheets, hardPoints);
+  setSeamSpacing(sheets, seamSpacing, junctionSpacing);
+  const double spacing = extractJunctionSpacing(settings, junctionSpacing);
+  for (const Sheet& sheet : sheets) {
+    if (!(settings.narrowFeatureVoxels > 0 &&
+          sheetWidth(sheet) < settings.narrowFeatureVoxels * plan.targetSize))
+      continue;  // a sheet meshed through a volume: no rows to match
+    const std::size_t before = ties.pairs.size();
+    tieOppositeCurves(sheet, ties);
+    if (ties.pairs.size() == before) continue;
+    const extract::JunctionNodes junctions = sheetJunctionNodes(sheet, spacing);
+    for (const Polyline& curve : sheet.junctionCurves) {
+      if (curve.closed || curve.points.size() < 2) continue;
+      double length = 0.0;
+      for (std::size_t i = 0; i + 1 < curve.points.size(); ++i)
+        length += distance(sheet.points[curve.points[i]], sheet.points[curve.points[i + 1]]);
+      ties.curves.emplace_back(curveKey(sheet, curve),
+                               TiedCurve{sampledPieces(sheet, curve, junctions), length});
+    }
+  }
+  return ties;
+}
+
+}  // namespace
+
+NodeEdge curveKey(const Sheet& sheet, const Polyline& curve) {
+  NodeEdge lowest{0, 0};
+  for (std::size_t i = 0; i + 1 < curve.points.size(); ++i) {
+    const Id a = sheet.pointNodeIds[curve.points[i]], b = sheet.pointNodeIds[curve.points[i + 1]];
+    const NodeEdge edge{std::min(a, b), std::max(a, b)};
+    if (i == 0 || edge < lowest) lowest = edge;
+  }
+  return lowest;
+}
+
+SeamCounts seamNodeCounts(const std::vector<FeModel>& models, const std::vector<PartPlan>& plans,
+                          const std::vector<double>& junctionSpacing,
+                          const std::vector<std::uint8_t>& skip,
+                          const std::unordered_map<Id, double>& seamSpacing,
+                          const std::vector<std::unordered_set<Id>>& hardPoints,
+                          const RemeshSettings& settings) {
+  std::vector<CurveTies> perPlan(plans.size());
+  tbb::parallel_for(std::size_t(0), plans.size(), [&](std::size_t i) {
+    if (!skip[i])
+      perPlan[i] =
+          partTies(models[i], plans[i], junctionSpacing[i], seamSpacing, hardPoints[i], settings);
+  });
+  // Every tied curve, with the most pieces any part's sampling gives it.
+  std::map<NodeEdge, TiedCurve> curves;
+  for (const CurveTies& ties : perPlan)
+    for (const auto& [key, curve] : ties.curves) {
+      const auto [it, added] = curves.emplace(key, curve);
+      if (!added) it->second.pieces = std::max(it->second.pieces, curve.pieces);
+    }
+  std::map<NodeEdge, long> count;
+  for (const auto& [key, curve] : curves) count[key] = curve.pieces;
+  const auto known = [&](const CurveSide& side) {
+    return std::all_of(side.begin(), side.end(), [&](const NodeEdge& k) { return count.count(k); });
+  };
+  const auto sum = [&](const CurveSide& side) {
+    long total = 0;
+    for (const NodeEdge& key : side) total += count.at(key);
+    return total;
+  };
+  // Raises the side with fewer pieces to the other's count, on its curve with the longest
+  // pieces, pass after pass (counts only grow) until every pair matches or kMatchingPasses.
+  for (int pass = 0; pass < kMatchingPasses; ++pass) {
+    bool changed = false;
+    for (const CurveTies& ties : perPlan)
+      for (const auto& [a, b] : ties.pairs) {
+        if (!known(a) || !known(b)) continue;
+        const long sa = sum(a), sb = sum(b);
+        if (sa == sb) continue;
+        const CurveSide& fewer = sa < sb ? a : b;
+        const NodeEdge* longest = &fewer.front();
+        for (const NodeEdge& key : fewer)
+          if (curves.at(key).length / double(count.at(key)) >
+              curves.at(*longest).length / double(count.at(*longest)))
+            longest = &key;
+        count[*longest] += std::abs(sa - sb);
+        changed = true;
+      }
+    if (!changed) break;
+  }
+  SeamCounts counts;
+  for (const auto& [key, curve] : curves)
+    if (count.at(key) > curve.pieces) counts[key] = count.at(key);
+  return counts;
+}
+
+void setSeamCounts(std::vector<Sheet>& sheets, const SeamCounts& counts) {
+  if (counts.empty()) return;
+  for (Sheet& sheet : sheets)
+    for (Polyline& curve : sheet.junctionCurves) {
+      if (curve.closed || curve.points.size() < 2) continue;
+      const auto it = counts.find(curveKey(sheet, curve));
+      if (it != counts.end()) curve.nodeCount = it->second;
+    }
+}
+
+}  // namespace voxremesh::pipeline

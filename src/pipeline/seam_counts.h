@@ -1,0 +1,60 @@
+// Node counts of junction curves that face each other across a narrow sheet (interval
+// assignment): where a narrow sheet's patch is four-sided (narrow_sheet.h, mapped_patch.h) and
+// two opposite sides are each one whole junction curve, both curves get the same number of
+// pieces, so that the patch is a grid of rows and columns instead of a row with trapezoids and
+// triangles where the counts differ. Curves are tied through every patch that has them on
+// opposite sides, over the whole deck (the parts on both sides of a seam see the same curve): a
+// side may be several curves, and the side with fewer pieces gets more on its curve with the
+// longest pieces until both match. Internal to src/pipeline.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+#include <vector>
+
+#include "voxremesh/pipeline.h"
+
+namespace voxremesh::pipeline {
+
+/// An edge between two nodes, by their IDs, lower first (both parts of a seam see it alike).
+using NodeEdge = std::pair<Id, Id>;
+
+/// Hash of a NodeEdge.
+struct NodeEdgeHash {
+  std::size_t operator()(const NodeEdge& edge) const noexcept {
+    return std::hash<Id>()(edge.first) * 1000003u ^ std::hash<Id>()(edge.second);
+  }
+};
+
+/// Per junction curve, keyed by its lowest edge (curveKey), the count of pieces it must have.
+using SeamCounts = std::unordered_map<NodeEdge, long, NodeEdgeHash>;
+
+/// The key of an open junction curve of a sheet: its lowest edge by node IDs.
+/// Precondition: the curve has at least two points.
+NodeEdge curveKey(const Sheet& sheet, const Polyline& curve);
+
+/// The counts of the curves that must get more pieces than their spacing gives them (see the
+/// top of the file); curves not listed keep their sampling.
+/// @param models          per plan, the part's shells and its neighbours' (as remeshDeck builds
+///                        them)
+/// @param junctionSpacing per plan, the spacing its junction curves get (PartSurroundings)
+/// @param skip            per plan, 1 for parts not remeshed
+/// @param seamSpacing     seamNodeSpacing of the same plans
+/// @param hardPoints      per plan, the part's hard points (its curves are cut there, as
+///                        placeHardPoints cuts them in the part's remesh)
+/// A part whose sheets cannot be built adds nothing. Deterministic: the result does not depend
+/// on the order or thread count.
+SeamCounts seamNodeCounts(const std::vector<FeModel>& models, const std::vector<PartPlan>& plans,
+                          const std::vector<double>& junctionSpacing,
+                          const std::vector<std::uint8_t>& skip,
+                          const std::unordered_map<Id, double>& seamSpacing,
+                          const std::vector<std::unordered_set<Id>>& hardPoints,
+                          const RemeshSettings& settings);
+
+/// Sets Polyline::nodeCount of the open junction curves of `sheets` that `counts` lists.
+void setSeamCounts(std::vector<Sheet>& sheets, const SeamCounts& counts);
+
+}  // namespace voxremesh::pipeline
