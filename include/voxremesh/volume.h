@@ -100,6 +100,11 @@ struct VolumeCurve {
   long nodeCount = 0;        ///< junction curves: see Polyline::nodeCount (sheets.h)
 };
 
+/// A curve of a sheet (its boundary loop, feature line or junction curve) in world coordinates,
+/// with its sampling (closed, keepPoints, nodeSpacing, nodeCount).
+/// Throws std::invalid_argument when the curve refers to a point the sheet does not have.
+VolumeCurve worldCurve(const Sheet& sheet, const Polyline& line);
+
 /// The volume of one part: the grids (behind a handle) plus the curves of its sheets.
 class Volume {
  public:

@@ -13,22 +13,29 @@ namespace voxremesh::extract {
 
 using namespace geom;  // NOLINT: the vector operators
 
-namespace {
-
-/// The loop turns by more than this (degrees) at a corner of a mapped patch.
+/// A loop turns by more than this (degrees) at a corner of a mapped patch.
 constexpr double kMappedCornerDeg = 45.0;
 
-/// The indices of the nodes where the loop of nodes turns by more than kMappedCornerDeg.
-std::vector<std::size_t> turningNodes(const std::vector<LoopNode>& nodes) {
+std::vector<std::size_t> loopCorners(const std::vector<std::array<double, 3>>& loop) {
   std::vector<std::size_t> corners;
-  const std::size_t n = nodes.size();
+  const std::size_t n = loop.size();
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec3& p = nodes[i].point;
-    const Vec3 in = p - nodes[(i + n - 1) % n].point, out = nodes[(i + 1) % n].point - p;
+    const Vec3& p = loop[i];
+    const Vec3 in = p - loop[(i + n - 1) % n], out = loop[(i + 1) % n] - p;
     if (norm(in) > 0.0 && norm(out) > 0.0 && angleDeg(in, out) > kMappedCornerDeg)
       corners.push_back(i);
   }
   return corners;
+}
+
+namespace {
+
+/// The indices of the nodes where the loop of nodes turns by more than 45 degrees (loopCorners).
+std::vector<std::size_t> turningNodes(const std::vector<LoopNode>& nodes) {
+  std::vector<std::array<double, 3>> points;
+  points.reserve(nodes.size());
+  for (const LoopNode& node : nodes) points.push_back(node.point);
+  return loopCorners(points);
 }
 
 /// One side of the patch: its nodes from one corner to the next, both included.

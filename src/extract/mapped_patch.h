@@ -37,6 +37,10 @@ struct MappedPatch {
 /// The surface normal at a point (need not be unit).
 using NormalAt = std::function<std::array<double, 3>(const std::array<double, 3>&)>;
 
+/// The indices of the points where a closed loop (in order, not repeated) turns by more than 45
+/// degrees: the corners mappedPatch and midpointPatch see.
+std::vector<std::size_t> loopCorners(const std::vector<std::array<double, 3>>& loop);
+
 /// Meshes a patch as a grid when its loop turns by more than 45 degrees at exactly four of its
 /// nodes, and opposite sides have as many pieces, or can get as many: a side whose inner nodes all
 /// have role Boundary and that has no fixed stretch (LoopNode::fixedAfter) is spaced again evenly

@@ -428,12 +428,7 @@ QuadMesh meshPatches(const Sheet& sheet, const std::vector<SheetPatch>& patches,
 /// The feature lines of a sheet in world space.
 std::vector<VolumeCurve> featureCurves(const Sheet& sheet) {
   std::vector<VolumeCurve> curves;
-  for (const Polyline& line : sheet.featureLines) {
-    VolumeCurve curve;
-    curve.closed = line.closed;
-    for (const PointIndex p : line.points) curve.points.push_back(sheet.points[p]);
-    curves.push_back(std::move(curve));
-  }
+  for (const Polyline& line : sheet.featureLines) curves.push_back(worldCurve(sheet, line));
   return curves;
 }
 

@@ -462,15 +462,7 @@ double extractJunctionSpacing(const RemeshSettings& settings, double junctionSpa
 
 extract::JunctionNodes sheetJunctionNodes(const Sheet& sheet, double spacing) {
   std::vector<VolumeCurve> curves;
-  for (const Polyline& curve : sheet.junctionCurves) {
-    VolumeCurve world;
-    world.closed = curve.closed;
-    world.keepPoints = curve.keepPoints;
-    world.nodeSpacing = curve.nodeSpacing;
-    world.nodeCount = curve.nodeCount;
-    for (const PointIndex p : curve.points) world.points.push_back(sheet.points[p]);
-    curves.push_back(std::move(world));
-  }
+  for (const Polyline& curve : sheet.junctionCurves) curves.push_back(worldCurve(sheet, curve));
   return extract::JunctionNodes(curves, spacing, 0.2 * spacing, kChordSagittaShare);
 }
 

@@ -10,6 +10,7 @@
 #include <map>
 #include <optional>
 
+#include "extract/mapped_patch.h"
 #include "extract/narrow_sheet.h"
 #include "extract/sheet_patches.h"
 #include "geometry/vec3.h"
@@ -21,9 +22,6 @@ namespace voxremesh::pipeline {
 using namespace geom;  // NOLINT: the vector operators
 
 namespace {
-
-/// A patch's loop turns by more than this (degrees) at its corners, as mappedPatch decides.
-constexpr double kPatchCornerDeg = 45.0;
 
 /// The most passes over all pairs of sides when matching their counts (each pass raises the
 /// sides with fewer pieces; pairs tied into a cycle that cannot match stop here).
@@ -64,21 +62,6 @@ long sampledPieces(const Sheet& sheet, const Polyline& curve,
   return std::max(1L, nodes - 1);
 }
 
-/// The indices into loop of the points where the closed loop turns by more than
-/// kPatchCornerDeg.
-std::vector<std::size_t> loopCorners(const Sheet& sheet, const std::vector<PointIndex>& loop) {
-  std::vector<std::size_t> corners;
-  const std::size_t n = loop.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3& p = sheet.points[loop[i]];
-    const Vec3 in = p - sheet.points[loop[(i + n - 1) % n]];
-    const Vec3 out = sheet.points[loop[(i + 1) % n]] - p;
-    if (norm(in) > 0.0 && norm(out) > 0.0 && angleDeg(in, out) > kPatchCornerDeg)
-      corners.push_back(i);
-  }
-  return corners;
-}
-
 /// Adds to `ties` the pairs of opposite sides of the sheet's four-sided one-loop patches where
 /// both sides are made of whole junction curves (a side with a free stretch adapts by itself; a
 /// side ending inside a curve is left alone).
@@ -99,7 +82,9 @@ void tieOppositeCurves(const Sheet& sheet, CurveTies& ties) {
   for (const extract::SheetPatch& patch : patches) {
     if (patch.loops.size() != 1) continue;
     const std::vector<PointIndex>& loop = patch.loops[0];
-    const std::vector<std::size_t> corners = loopCorners(sheet, loop);
+    std::vector<std::array<double, 3>> loopPoints;
+    for (const PointIndex p : loop) loopPoints.push_back(sheet.points[p]);
+    const std::vector<std::size_t> corners = extract::loopCorners(loopPoints);
     if (corners.size() != 4) continue;
     std::array<std::optional<CurveSide>, 4> sides;
     for (std::size_t k = 0; k < 4; ++k) {

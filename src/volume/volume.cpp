@@ -70,9 +70,7 @@ const std::vector<VolumeCurve>& Volume::junctionCurves() const {
   return impl_->junctionCurves;
 }
 
-namespace {
-
-VolumeCurve toWorld(const Sheet& sheet, const Polyline& line) {
+VolumeCurve worldCurve(const Sheet& sheet, const Polyline& line) {
   VolumeCurve curve;
   curve.closed = line.closed;
   curve.keepPoints = line.keepPoints;
@@ -88,8 +86,6 @@ VolumeCurve toWorld(const Sheet& sheet, const Polyline& line) {
   }
   return curve;
 }
-
-}  // namespace
 
 Volume buildVolume(const std::vector<Sheet>& sheets, const VolumeSettings& settings,
                    const VolumeSource& source) {
@@ -112,12 +108,12 @@ Volume buildVolume(const std::vector<Sheet>& sheets, const VolumeSettings& setti
 
   for (const Sheet& sheet : sheets) {
     for (const Polyline& line : sheet.featureLines)
-      out.featureLines.push_back(toWorld(sheet, line));
+      out.featureLines.push_back(worldCurve(sheet, line));
     for (const Polyline& loop : sheet.boundaryLoops) {
-      out.boundaryLoops.push_back(toWorld(sheet, loop));
+      out.boundaryLoops.push_back(worldCurve(sheet, loop));
     }
     for (const Polyline& junction : sheet.junctionCurves)
-      out.junctionCurves.push_back(toWorld(sheet, junction));
+      out.junctionCurves.push_back(worldCurve(sheet, junction));
     for (PointIndex p : sheet.featurePoints) {
       if (p >= sheet.points.size()) {
         throw std::invalid_argument("a feature point refers to point " + std::to_string(p) +
