@@ -182,11 +182,12 @@ TEST(NarrowSheet, AJunctionThroughTheMiddleCutsTheSheetAndBothSidesShareItsNodes
   EXPECT_EQ(middle, 7u);  // 24 mm at 4 mm: 6 pieces
 }
 
-TEST(NarrowSheet, JunctionNodesOnARungAcrossThePatchAreMeshNodesOrTheSheetIsRefused) {
+TEST(NarrowSheet, AWebOnARungOfTheStripCutsItThereAndKeepsItsJunctionNodes) {
   // A strip 24 x 1.5 mm in 12 x 1 elements with a web (part 3) standing on its rung x = 12: a
-  // junction curve of one edge from side to side, which does not cut the patch (sheet_patches.h),
-  // with nodes at 0.5 and 1.0 mm at a junction spacing of 0.5 mm. The web's mesh has those
-  // nodes, so the strip's must too, or the web would hang on the strip's edges.
+  // junction curve of one edge from side to side, with nodes at 0.5 and 1.0 mm at a junction
+  // spacing of 0.5 mm. The web's mesh has those nodes, so the strip's must too, or the web would
+  // hang on the strip's edges: the strip is cut at the rung (sheet_patches.h), both rows keep
+  // them, fixed for the optimisation.
   FeModel model = strip(12, 1, 2.0, 1.5);
   const Id top = 1000;
   for (int j = 0; j <= 1; ++j) model.nodes.push_back({top + Id(j), {12.0, 1.5 * j, 3.0}});
@@ -194,19 +195,19 @@ TEST(NarrowSheet, JunctionNodesOnARungAcrossThePatchAreMeshNodesOrTheSheetIsRefu
   model.partOrAdd(3);
   SheetSettings uncut;  // one sheet with the rung inside (not cut along the seam, sheets.h)
   uncut.sheetCuts = std::make_shared<const std::vector<std::array<Id, 2>>>();
-  // One row across at 4 mm has no node there: refused.
-  EXPECT_THROW(meshStrip(model, 1, 4.0, 0.1, 0.5, uncut), extract::NarrowSheetRefusal);
-  // A grid at 0.5 mm has both: they stay, fixed for the optimisation.
-  const QuadMesh mesh = meshStrip(model, 1, 0.5, 0.1, 0.5, uncut);
-  std::size_t onNodes = 0;
-  for (std::size_t p = 0; p < mesh.points.size(); ++p) {
-    const auto& q = mesh.points[p];
-    if (std::abs(q[0] - 12.0) < 1e-9 && q[1] > 0.25 && q[1] < 1.25) {
-      ++onNodes;
-      EXPECT_NE(mesh.constraints[p].role, PointRole::Free) << q[1];
+  for (const double spacing : {4.0, 0.5}) {
+    const QuadMesh mesh = meshStrip(model, 1, spacing, 0.1, 0.5, uncut);
+    std::size_t onNodes = 0;
+    for (std::size_t p = 0; p < mesh.points.size(); ++p) {
+      const auto& q = mesh.points[p];
+      if (std::abs(q[0] - 12.0) < 1e-9 && q[1] > 0.25 && q[1] < 1.25) {
+        ++onNodes;
+        EXPECT_NE(mesh.constraints[p].role, PointRole::Free) << spacing << " " << q[1];
+      }
     }
+    EXPECT_EQ(onNodes, 2u) << spacing;
+    EXPECT_NEAR(area(mesh), 24.0 * 1.5, 1e-9) << spacing;
   }
-  EXPECT_EQ(onNodes, 2u);
 }
 
 TEST(NarrowSheet, AFoldAlongTheStripThatNoChordFollowsIsACutBetweenTwoRows) {

@@ -438,9 +438,9 @@ namespace {
 
 /// Pins every node the junction curves of `sheet` prescribe (a curve point that is a node, or a
 /// node inside one of its edges) where `mesh` has a point (within 1e-6 of the spacing): a free
-/// point there (a grid node on a junction curve across a patch that does not cut it, a rung whose
-/// ends both lie on the boundary, sheet_patches.h) becomes fixed (role Corner), which
-/// optimisation does not move. Throws NarrowSheetRefusal when such a node is no point of the mesh.
+/// point there (a grid node on a junction curve across a patch that does not cut it) becomes fixed
+/// (role Corner), which optimisation does not move. Throws NarrowSheetRefusal when such a node is
+/// no point of the mesh.
 void requireJunctionNodes(const Sheet& sheet, const JunctionNodes& junctions, QuadMesh& mesh,
                           double spacing) {
   std::vector<std::pair<Vec3, std::size_t>> points;  // (position, mesh point), sorted

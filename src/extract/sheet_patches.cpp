@@ -25,20 +25,15 @@ int corners(const std::array<PointIndex, 4>& face) {
 
 /// The inner junction edges of a sheet, and its feature-line edges when asked (see sheetPatches).
 std::set<Edge> cutEdges(const Sheet& sheet, bool atFeatureLines) {
-  std::set<PointIndex> onLoops;
-  for (const Polyline& loop : sheet.boundaryLoops)
-    onLoops.insert(loop.points.begin(), loop.points.end());
   std::set<Edge> cuts;
-  const auto addEdges = [&](const Polyline& curve, bool rungsToo) {
+  const auto addEdges = [&](const Polyline& curve) {
     const std::size_t n = curve.points.size();
-    for (std::size_t i = 0; i + 1 < n + (curve.closed ? 1 : 0); ++i) {
-      const PointIndex a = curve.points[i], b = curve.points[(i + 1) % n];
-      if (rungsToo || onLoops.count(a) == 0 || onLoops.count(b) == 0) cuts.insert(edgeKey(a, b));
-    }
+    for (std::size_t i = 0; i + 1 < n + (curve.closed ? 1 : 0); ++i)
+      cuts.insert(edgeKey(curve.points[i], curve.points[(i + 1) % n]));
   };
-  for (const Polyline& curve : sheet.junctionCurves) addEdges(curve, false);
+  for (const Polyline& curve : sheet.junctionCurves) addEdges(curve);
   if (atFeatureLines)
-    for (const Polyline& line : sheet.featureLines) addEdges(line, true);
+    for (const Polyline& line : sheet.featureLines) addEdges(line);
   return cuts;
 }
 

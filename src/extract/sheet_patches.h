@@ -18,9 +18,9 @@ struct SheetPatch {
 };
 
 /// Cuts a sheet into patches along its inner junction edges: junction-curve edges with a face on
-/// both sides, except those joining two points of the sheet's boundary loops (a rung across a
-/// strip whose two sides meet the same part is no line of its own); and, when asked, along all
-/// edges of its feature lines (a box or a cup becomes its walls and its cap).
+/// both sides, rungs from one boundary loop to another too (a web standing on a strip's rung gets
+/// the rung's junction nodes on both patches' loops); and, when asked, along all edges of its
+/// feature lines (a box or a cup becomes its walls and its cap).
 /// @param sheet           a sheet (buildSheets): manifold, consistently oriented
 /// @param atFeatureLines  cut along the feature lines too
 /// @return the patches in the order of their first face
