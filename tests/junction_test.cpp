@@ -109,6 +109,32 @@ TEST(JunctionNodes, ACurveWithACountOfItsOwnHasThatManyPiecesSpreadOverItsSpans)
   EXPECT_TRUE(same.edge(kept.points[1], kept.points[2])->points.empty());
 }
 
+TEST(JunctionNodes, PiecesShrinkTowardAGradedEndWithinItsRatio) {
+  // A straight seam 30 long (its points 3 apart, which the spacing 3 would keep) graded toward
+  // its end at x = 30 with ratio 1.25: still ten pieces, the one at the graded end as long as
+  // the far ones, and each node at most 1.25 times as far from that end as the node before.
+  VolumeCurve curve;
+  for (int i = 0; i <= 10; ++i) curve.points.push_back({3.0 * i, 0.0, 0.0});
+  curve.grading = {{curve.points.back(), 1.25}};
+  const extract::JunctionNodes nodes({curve}, 3.0, 0.6);
+  std::vector<double> fromEnd;  // distances of the nodes from x = 30, the end itself excluded
+  for (const auto& p : nodes.nodes())
+    if (p[0] < 30.0) fromEnd.push_back(30.0 - p[0]);
+  std::sort(fromEnd.begin(), fromEnd.end());
+  ASSERT_EQ(fromEnd.size(), 10u);
+  EXPECT_DOUBLE_EQ(fromEnd.back(), 30.0);
+  const double far = fromEnd[9] - fromEnd[8];
+  EXPECT_NEAR(fromEnd[0], far, 1e-9);
+  for (std::size_t k = 1; k < fromEnd.size(); ++k)
+    EXPECT_LE(fromEnd[k], 1.25 * fromEnd[k - 1] + 1e-9) << k;
+  EXPECT_LT(fromEnd[1] - fromEnd[0], 0.5 * far);  // the first rung inside the wedge is close
+  // Reversed, the curve is graded toward the same point (grading goes by position).
+  VolumeCurve reversed = curve;
+  std::reverse(reversed.points.begin(), reversed.points.end());
+  const extract::JunctionNodes same({reversed}, 3.0, 0.6);
+  EXPECT_EQ(same.nodes(), nodes.nodes());
+}
+
 TEST(JunctionNodes, AnEvenPieceEndingOnACurvePointButForRoundingEndsOnIt) {
   // 10 long in three pieces at 10/3: the first piece ends 1e-14 short of the curve point there.
   // That point is the node (every sheet along the curve then has it), not a node 1e-14 from it

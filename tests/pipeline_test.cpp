@@ -298,6 +298,48 @@ TEST(Pipeline, ARingBetweenSeamsOfDifferentLengthsIsOneRowOfQuads) {
   EXPECT_EQ(quads + 1, inner.size());
 }
 
+/// A wedge (part 1, tip angle 14 degrees at (30, 0), base 7.4 at x = 0) inlaid between two plates
+/// (parts 2 above and 3 below, to y = +-10), flat; the wedge's sides are seams, ten elements along.
+FeModel wedgeBetweenPlates() {
+  FeModel model;
+  const auto side = [](int i) { return 3.7 * (1.0 - i / 10.0); };  // half-width at x = 3i
+  // Nodes: 1 + i on the top side, 21 + i on the bottom side (21 + 10 is the tip again), 41 + i
+  // on the upper plate's edge y = 10, 61 + i on the lower plate's edge y = -10.
+  for (int i = 0; i <= 10; ++i) {
+    test::addNode(model, Id(1 + i), 3.0 * i, side(i), 0.0);
+    if (i < 10) test::addNode(model, Id(21 + i), 3.0 * i, -side(i), 0.0);
+    test::addNode(model, Id(41 + i), 3.0 * i, 10.0, 0.0);
+    test::addNode(model, Id(61 + i), 3.0 * i, -10.0, 0.0);
+  }
+  const auto bottom = [](int i) { return i == 10 ? Id(11) : Id(21 + i); };
+  Id shell = 1;
+  for (int i = 0; i < 10; ++i) {
+    if (i < 9)
+      test::addShell(model, shell++, 1, {bottom(i), bottom(i + 1), Id(2 + i), Id(1 + i)});
+    else
+      test::addShell(model, shell++, 1, {bottom(i), Id(11), Id(1 + i)});
+    test::addShell(model, shell++, 2, {Id(1 + i), Id(2 + i), Id(42 + i), Id(41 + i)});
+    test::addShell(model, shell++, 3, {Id(61 + i), Id(62 + i), bottom(i + 1), bottom(i)});
+  }
+  return model;
+}
+
+TEST(Pipeline, AWedgeBetweenSeamsIsARowWhoseRungsShrinkTowardItsTip) {
+  // At size 3 the wedge is meshed from its boundary: one row across it. Even pieces along its
+  // seams would put the rungs next to the tip at 3 and 6 from it, a trapezoid whose parallel
+  // sides are 1:2 (Jacobian ratio 0.5). The seams' nodes shrink toward the tip instead, so that
+  // no element of the wedge fails a criterion (its tip triangle is excused by the tip's angle).
+  FeModel model = wedgeBetweenPlates();
+  RemeshSettings settings;
+  settings.targetSize = 3.0;
+  const RemeshReport report = remeshDeck(model, settings);
+  ASSERT_EQ(report.parts.size(), 3u);
+  for (const RemeshedPart& part : report.parts)
+    EXPECT_NE(part.status, PartStatus::Kept) << part.plan.part << ": " << part.reason;
+  EXPECT_EQ(report.parts[0].plan.part, 1);
+  EXPECT_EQ(report.parts[0].acceptance.failing, 0u) << report.parts[0].reason;
+}
+
 /// The report of one part of a deck remeshed alone at the default settings (the other parts
 /// kept).
 RemeshedPart remeshOnePart(const std::string& path, Id part, double size = 0.0) {

@@ -88,9 +88,11 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "voxremesh/fe_model.h"
@@ -114,8 +116,13 @@ struct Polyline {
   /// either side ask for less than the extraction's spacing (seamNodeSpacing); 0: the extraction's.
   double nodeSpacing = 0.0;
   /// Junction curves only: the number of pieces its nodes cut it into, where it must match the
-  /// side across a narrow sheet's four-sided patch (seamNodeCounts); 0: from the spacing.
+  /// side across a narrow sheet's four-sided patch (seamSampling); 0: from the spacing.
   long nodeCount = 0;
+  /// Junction curves only: points of the curve (indices into `points`) toward which its pieces
+  /// shrink (sharp corners of a sheet, where a row narrows into a wedge; seamSampling), each
+  /// with the largest ratio between the distances of two consecutive nodes from it; empty: even
+  /// pieces.
+  std::vector<std::pair<std::size_t, double>> grading{};
 };
 
 /// One manifold, consistently oriented sheet (with boundary) of a part.

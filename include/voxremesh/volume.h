@@ -30,6 +30,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "voxremesh/fe_model.h"
@@ -98,10 +99,13 @@ struct VolumeCurve {
   bool keepPoints = false;   ///< junction curves: see Polyline::keepPoints (sheets.h)
   double nodeSpacing = 0.0;  ///< junction curves: see Polyline::nodeSpacing (sheets.h)
   long nodeCount = 0;        ///< junction curves: see Polyline::nodeCount (sheets.h)
+  /// Junction curves: the points toward which the pieces shrink, with their ratio (see
+  /// Polyline::grading, sheets.h).
+  std::vector<std::pair<std::array<double, 3>, double>> grading{};
 };
 
 /// A curve of a sheet (its boundary loop, feature line or junction curve) in world coordinates,
-/// with its sampling (closed, keepPoints, nodeSpacing, nodeCount).
+/// with its sampling (closed, keepPoints, nodeSpacing, nodeCount, grading).
 /// Throws std::invalid_argument when the curve refers to a point the sheet does not have.
 VolumeCurve worldCurve(const Sheet& sheet, const Polyline& line);
 

@@ -164,18 +164,45 @@ std::vector<long> spanPieces(const std::vector<double>& lengths, long count) {
   return pieces;
 }
 
+/// Relative lengths of the `pieces` pieces of a span whose ends may shrink toward graded points
+/// (junction_nodes.h): from a graded end the first piece is 1, and each next node lies at most
+/// `ratio` times as far from that end as the node before it (pieces of at most 1); other pieces
+/// are 1. A ratio of 1 or less leaves its end even.
+std::vector<double> gradedPieces(long pieces, double startRatio, double endRatio) {
+  std::vector<double> weights(std::size_t(pieces), 1.0);
+  const auto shrink = [&](double ratio, bool fromEnd) {
+    if (!(ratio > 1.0)) return;
+    double reach = 1.0;  // how far the last node lies from the graded end
+    for (long j = 1; j < pieces; ++j) {
+      const double next = std::min(reach * ratio, reach + 1.0);
+      double& weight = weights[std::size_t(fromEnd ? pieces - 1 - j : j)];
+      weight = std::min(weight, next - reach);
+      reach = next;
+    }
+  };
+  shrink(startRatio, false);
+  shrink(endRatio, true);
+  return weights;
+}
+
 /// The nodes of one curve in canonical order (closed: the first is not repeated).
-/// A curve that keeps its points (VolumeCurve::keepPoints), or whose points are already spaced
-/// as the sampling would space them (segmentsFitSpacing), has every point as a node and no other.
-/// An open curve with a count of its own (`count` > 0) has every point as a node when it has
-/// that many segments, else that many pieces in all, spread over its spans between anchors by
-/// their lengths, with no far points added (the count must hold).
+/// A curve that keeps its points (VolumeCurve::keepPoints), or, when not graded, whose points are
+/// already spaced as the sampling would space them (segmentsFitSpacing), has every point as a
+/// node and no other. An open curve with a count of its own (`count` > 0) has every point as a
+/// node when it has that many segments and is not graded, else that many pieces in all, spread
+/// over its spans between anchors by their lengths, with no far points added (the count must
+/// hold). `grading`: per curve point,
+/// the ratio of the pieces shrinking toward it where it ends a span (gradedPieces), else 0.
 std::vector<CurveNode> sampleCurve(const Walk& walk, bool keepPoints, long count, double spacing,
-                                   double tolerance, double sagittaShare) {
+                                   double tolerance, double sagittaShare,
+                                   const std::vector<double>& grading) {
   const std::size_t n = walk.points.size();
   if (walk.closed) count = 0;
   const bool ownCount = count > 0;
-  if (keepPoints || (ownCount ? long(n) - 1 == count : segmentsFitSpacing(walk, spacing))) {
+  const bool graded =
+      std::any_of(grading.begin(), grading.end(), [](double ratio) { return ratio > 1.0; });
+  if (keepPoints ||
+      (!graded && (ownCount ? long(n) - 1 == count : segmentsFitSpacing(walk, spacing)))) {
     std::vector<CurveNode> nodes;
     for (std::size_t i = 0; i < n; ++i) nodes.push_back({walk.arc[i], i});
     return nodes;
@@ -205,8 +232,16 @@ std::vector<CurveNode> sampleCurve(const Walk& walk, bool keepPoints, long count
     const double length = to - from;
     long pieces = ownCount ? ownPieces[k] : std::max(1L, std::lround(length / spacing));
     if (walk.closed && anchors.size() == 2) pieces = std::max(3L, pieces);
+    const std::vector<double> weights =
+        gradedPieces(pieces, grading[anchors[k] % n], grading[anchors[k + 1] % n]);
+    double total = 0.0;
+    for (double weight : weights) total += weight;
     std::vector<CurveNode> span{{from, anchors[k] % n}};
-    for (long j = 1; j < pieces; ++j) span.push_back({from + length * double(j) / double(pieces)});
+    double reached = 0.0;
+    for (long j = 1; j < pieces; ++j) {
+      reached += weights[std::size_t(j - 1)];
+      span.push_back({from + length * reached / total});
+    }
     span.push_back({to, anchors[k + 1] % n});
     for (std::size_t j = 0; j + 1 < span.size(); ++j) {
       nodes.push_back(span[j]);
@@ -237,8 +272,14 @@ void JunctionNodes::add(const std::vector<VolumeCurve>& curves, double spacing, 
     // A curve with a spacing of its own keeps the tolerance's share of it.
     const double own =
         curve.nodeSpacing > 0.0 && std::isfinite(curve.nodeSpacing) ? curve.nodeSpacing : spacing;
-    const std::vector<CurveNode> nodes = sampleCurve(walk, curve.keepPoints, curve.nodeCount, own,
-                                                     tolerance * own / spacing, sagittaShare);
+    std::vector<double> grading(points.size(), 0.0);
+    for (const auto& [point, ratio] : curve.grading) {
+      const auto at = std::find(points.begin(), points.end(), point);
+      if (at != points.end()) grading[std::size_t(at - points.begin())] = ratio;
+    }
+    const std::vector<CurveNode> nodes =
+        sampleCurve(walk, curve.keepPoints, curve.nodeCount, own, tolerance * own / spacing,
+                    sagittaShare, grading);
     const std::size_t segments = walk.arc.size() - 1;
     std::vector<JunctionEdgeNodes> perEdge(segments);
     for (std::size_t s = 0; s < segments; ++s) perEdge[s].from = walk.at(s);

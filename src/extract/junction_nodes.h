@@ -14,14 +14,19 @@
 //   (or than `sagittaShare` of the chord's length, where that is less), that point becomes a node
 //   too (farthest first, recursively, as Douglas-Peucker).
 // - A node at a curve point takes its exact coordinates.
-// - A curve that keeps its points (the seam to a part that keeps its elements), or whose every
-//   segment is already within a factor 1.5 of the spacing (the range of an even sampling's
-//   pieces), has every point as a node and no other: an original seam that fits the size stays
-//   as it was, and the nodes on the two sides of a narrow strip keep facing each other.
+// - A curve that keeps its points (the seam to a part that keeps its elements), or, unless it is
+//   graded (below), whose every segment is already within a factor 1.5 of the spacing (the
+//   range of an even sampling's pieces), has every point as a node and no other: an original seam
+//   that fits the size stays as it was, and the nodes on the two sides of a narrow strip keep
+//   facing each other.
 // - An open curve with a count of its own (VolumeCurve::nodeCount: opposite sides of a narrow
 //   sheet's four-sided patch get the same count, seam_counts.h) is cut into that many pieces:
 //   its points when it has that many segments, else pieces spread over its spans between
 //   anchors by length, with no far points added.
+// - Where a span ends at a graded point (VolumeCurve::grading: a sharp corner of a sheet, where
+//   a row of quads narrows into a wedge), its pieces shrink toward that point: the piece at the
+//   point is as long as the span's others, and every next node lies at most the point's ratio
+//   times as far from it as the node before, so that the rungs across the wedge keep that ratio.
 #pragma once
 
 #include <array>

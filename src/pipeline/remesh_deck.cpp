@@ -377,13 +377,13 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
   std::vector<double> junctionSpacing;
   const std::vector<std::unordered_set<Id>> hardPoints = partHardPoints(deck, plans);
   std::unordered_map<Id, double> seamSpacing;
-  pipeline::SeamCounts seamCounts;
+  pipeline::SeamSampling seamSampling;
   const auto updateSpacing = [&] {
     junctionSpacing = junctionSpacings(models, plans);
     arena.execute([&] {
       seamSpacing =
           pipeline::seamNodeSpacing(models, plans, junctionSpacing, keptFromStart, settings);
-      seamCounts = pipeline::seamNodeCounts(models, plans, junctionSpacing, keptFromStart,
+      seamSampling = pipeline::seamSampling(models, plans, junctionSpacing, keptFromStart,
                                             seamSpacing, hardPoints, settings);
     });
   };
@@ -417,7 +417,7 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
         const bool isFixed = std::binary_search(fixed.begin(), fixed.end(), plans[i].part);
         const pipeline::PartSurroundings surroundings{
             junctionSpacing[i], isFixed ? otherParts(models[i], plans[i].part) : fixed,
-            hardPoints[i], &seamSpacing, &seamCounts};
+            hardPoints[i], &seamSpacing, &seamSampling};
         const bool halved = !fullSizeReason[i].empty();
         RemeshedPart result = pipeline::remeshPart(
             models[i], plans[i], halved ? halvedSettings : settings, surroundings, meshes[i],

@@ -494,7 +494,7 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
   std::string sizeNote;
   const SheetHardPoints hardPoints = placeHardPoints(sheets, surroundings.hardPoints);
   if (surroundings.seamSpacing) setSeamSpacing(sheets, *surroundings.seamSpacing, junctionSpacing);
-  if (surroundings.seamCounts) setSeamCounts(sheets, *surroundings.seamCounts);
+  if (surroundings.seamSampling) setSeamSampling(sheets, *surroundings.seamSampling);
   std::vector<Point3> junctionPositions =
       junctionNodePositions(sheets, extractJunctionSpacing(settings, junctionSpacing));
   const std::vector<std::vector<std::uint8_t>> insideCurves =

@@ -96,9 +96,9 @@ struct PartSurroundings {
   /// Per seam node, the spacing the sheets through it ask for (seamNodeSpacing); a junction curve
   /// whose nodes ask for less than junctionSpacing gets that (setSeamSpacing). Null: none.
   const std::unordered_map<Id, double>* seamSpacing = nullptr;
-  /// Per junction curve, the count of pieces it must have (seamNodeCounts, setSeamCounts).
+  /// The counts and grading of the deck's junction curves (seamSampling, setSeamSampling).
   /// Null: none.
-  const SeamCounts* seamCounts = nullptr;
+  const SeamSampling* seamSampling = nullptr;
 };
 
 /// Marks the junction curves of `sheets` that run along a part of `keptParts` (ascending IDs): a

@@ -1,4 +1,4 @@
-// Node counts of junction curves facing each other across narrow sheets (seam_counts.h).
+// Node counts and grading of junction curves across narrow sheets (seam_counts.h).
 #include "pipeline/seam_counts.h"
 
 #include <tbb/parallel_for.h>
@@ -41,6 +41,7 @@ struct TiedCurve {
 struct CurveTies {
   std::vector<std::pair<CurveSide, CurveSide>> pairs;
   std::vector<std::pair<NodeEdge, TiedCurve>> curves;
+  std::vector<std::pair<Id, double>> graded;  ///< sharp corners: node ID, wedgeRatio
 };
 
 /// The edge between two points of a sheet, by point index, lower first.
@@ -113,6 +114,26 @@ void tieOppositeCurves(const Sheet& sheet, CurveTies& ties) {
   }
 }
 
+/// Adds to `graded` the points of the sheet's boundary loops where the sheet spans less than a
+/// quad's smallest angle (the sum of its faces' angles there), with their wedgeRatio.
+void gradeSharpCorners(const Sheet& sheet, const QualitySettings& criteria,
+                       std::vector<std::pair<Id, double>>& graded) {
+  std::vector<double> angle(sheet.points.size(), 0.0);
+  for (const auto& face : sheet.faces) {
+    const int corners = face[3] == kNoPoint ? 3 : 4;
+    for (int c = 0; c < corners; ++c) {
+      const auto& at = sheet.points[face[std::size_t(c)]];
+      const Vec3 toNext = sheet.points[face[std::size_t((c + 1) % corners)]] - at;
+      const Vec3 toPrevious = sheet.points[face[std::size_t((c + corners - 1) % corners)]] - at;
+      angle[face[std::size_t(c)]] += angleDeg(toNext, toPrevious);
+    }
+  }
+  for (const Polyline& loop : sheet.boundaryLoops)
+    for (const PointIndex p : loop.points)
+      if (const double ratio = wedgeRatio(angle[p], criteria); ratio > 0.0)
+        graded.emplace_back(sheet.pointNodeIds[p], ratio);
+}
+
 /// The ties of one part (see CurveTies); none when its sheets cannot be built.
 CurveTies partTies(const FeModel& model, const PartPlan& plan, double junctionSpacing,
                    const std::unordered_map<Id, double>& seamSpacing,
@@ -131,6 +152,7 @@ CurveTies partTies(const FeModel& model, const PartPlan& plan, double junctionSp
     if (!(settings.narrowFeatureVoxels > 0 &&
           sheetWidth(sheet) < settings.narrowFeatureVoxels * plan.targetSize))
       continue;  // a sheet meshed through a volume: no rows to match
+    gradeSharpCorners(sheet, settings.optimizeSettings.quality, ties.graded);
     const std::size_t before = ties.pairs.size();
     tieOppositeCurves(sheet, ties);
     if (ties.pairs.size() == before) continue;
@@ -159,7 +181,14 @@ NodeEdge curveKey(const Sheet& sheet, const Polyline& curve) {
   return lowest;
 }
 
-SeamCounts seamNodeCounts(const std::vector<FeModel>& models, const std::vector<PartPlan>& plans,
+double wedgeRatio(double cornerDeg, const QualitySettings& criteria) {
+  if (!(cornerDeg < criteria.minQuadAngleDeg)) return 0.0;
+  const double halfTangent = std::tan(0.5 * std::max(cornerDeg, 0.0) * M_PI / 180.0);
+  return std::min(1.0 / std::sqrt(criteria.minJacobianRatio),
+                  1.0 + std::sqrt(criteria.maxAspectRatio) * 2.0 * halfTangent);
+}
+
+SeamSampling seamSampling(const std::vector<FeModel>& models, const std::vector<PartPlan>& plans,
                           const std::vector<double>& junctionSpacing,
                           const std::vector<std::uint8_t>& skip,
                           const std::unordered_map<Id, double>& seamSpacing,
@@ -208,19 +237,31 @@ SeamCounts seamNodeCounts(const std::vector<FeModel>& models, const std::vector<
       }
     if (!changed) break;
   }
-  SeamCounts counts;
+  SeamSampling sampling;
   for (const auto& [key, curve] : curves)
-    if (count.at(key) > curve.pieces) counts[key] = count.at(key);
-  return counts;
+    if (count.at(key) > curve.pieces) sampling.counts[key] = count.at(key);
+  for (const CurveTies& ties : perPlan)
+    for (const auto& [node, ratio] : ties.graded) {
+      const auto [it, added] = sampling.grading.emplace(node, ratio);
+      if (!added) it->second = std::min(it->second, ratio);
+    }
+  return sampling;
 }
 
-void setSeamCounts(std::vector<Sheet>& sheets, const SeamCounts& counts) {
-  if (counts.empty()) return;
+void setSeamSampling(std::vector<Sheet>& sheets, const SeamSampling& sampling) {
   for (Sheet& sheet : sheets)
     for (Polyline& curve : sheet.junctionCurves) {
-      if (curve.closed || curve.points.size() < 2) continue;
-      const auto it = counts.find(curveKey(sheet, curve));
-      if (it != counts.end()) curve.nodeCount = it->second;
+      if (curve.points.size() < 2) continue;
+      if (!curve.closed) {
+        const auto it = sampling.counts.find(curveKey(sheet, curve));
+        if (it != sampling.counts.end()) curve.nodeCount = it->second;
+      }
+      curve.grading.clear();
+      if (sampling.grading.empty()) continue;
+      for (std::size_t i = 0; i < curve.points.size(); ++i) {
+        const auto it = sampling.grading.find(sheet.pointNodeIds[curve.points[i]]);
+        if (it != sampling.grading.end()) curve.grading.emplace_back(i, it->second);
+      }
     }
 }
 

@@ -5,7 +5,9 @@
 // triangles where the counts differ. Curves are tied through every patch that has them on
 // opposite sides, over the whole deck (the parts on both sides of a seam see the same curve): a
 // side may be several curves, and the side with fewer pieces gets more on its curve with the
-// longest pieces until both match. Internal to src/pipeline.
+// longest pieces until both match. And where a narrow sheet narrows into a sharp corner, the
+// junction curves ending there get pieces shrinking toward it (junction_nodes.h), on every part
+// that has them. Internal to src/pipeline.
 #pragma once
 
 #include <cstdint>
@@ -36,8 +38,26 @@ using SeamCounts = std::unordered_map<NodeEdge, long, NodeEdgeHash>;
 /// Precondition: the curve has at least two points.
 NodeEdge curveKey(const Sheet& sheet, const Polyline& curve);
 
-/// The counts of the curves that must get more pieces than their spacing gives them (see the
-/// top of the file); curves not listed keep their sampling.
+/// How the deck's junction curves are sampled beyond their spacing.
+struct SeamSampling {
+  /// Per curve that must get more pieces than its spacing gives it, that count (see the top of
+  /// the file); curves not listed keep their sampling.
+  SeamCounts counts;
+  /// Per node (by ID) at a sharp corner of a narrow sheet, the ratio of the pieces shrinking
+  /// toward it on the junction curves ending there (wedgeRatio; the smallest any sheet asks).
+  std::unordered_map<Id, double> grading;
+};
+
+/// The growth ratio of the pieces of a junction curve toward a corner of `cornerDeg` degrees
+/// narrower than a quad's smallest angle (where rows narrow into a wedge): the rungs across the
+/// wedge then keep consecutive lengths within that ratio. It keeps each trapezoid of the row
+/// halfway (geometrically) between a rectangle and the limits: its parallel sides' ratio (its
+/// Jacobian ratio at the corners) at sqrt(minJacobianRatio), its length along at most
+/// sqrt(maxAspectRatio) times its width. Returns 0 (no grading) for a corner at or above
+/// minQuadAngleDeg. Precondition: valid criteria (checkQualitySettings).
+double wedgeRatio(double cornerDeg, const QualitySettings& criteria);
+
+/// The sampling of the deck's junction curves (SeamSampling, see the top of the file).
 /// @param models          per plan, the part's shells and its neighbours' (as remeshDeck builds
 ///                        them)
 /// @param junctionSpacing per plan, the spacing its junction curves get (PartSurroundings)
@@ -47,14 +67,15 @@ NodeEdge curveKey(const Sheet& sheet, const Polyline& curve);
 ///                        placeHardPoints cuts them in the part's remesh)
 /// A part whose sheets cannot be built adds nothing. Deterministic: the result does not depend
 /// on the order or thread count.
-SeamCounts seamNodeCounts(const std::vector<FeModel>& models, const std::vector<PartPlan>& plans,
+SeamSampling seamSampling(const std::vector<FeModel>& models, const std::vector<PartPlan>& plans,
                           const std::vector<double>& junctionSpacing,
                           const std::vector<std::uint8_t>& skip,
                           const std::unordered_map<Id, double>& seamSpacing,
                           const std::vector<std::unordered_set<Id>>& hardPoints,
                           const RemeshSettings& settings);
 
-/// Sets Polyline::nodeCount of the open junction curves of `sheets` that `counts` lists.
-void setSeamCounts(std::vector<Sheet>& sheets, const SeamCounts& counts);
+/// Sets Polyline::nodeCount of the open junction curves of `sheets` that `sampling` counts, and
+/// Polyline::grading at the curve points it grades.
+void setSeamSampling(std::vector<Sheet>& sheets, const SeamSampling& sampling);
 
 }  // namespace voxremesh::pipeline

@@ -84,6 +84,8 @@ VolumeCurve worldCurve(const Sheet& sheet, const Polyline& line) {
     }
     curve.points.push_back(sheet.points[p]);
   }
+  for (const auto& [index, ratio] : line.grading)
+    curve.grading.emplace_back(curve.points.at(index), ratio);
   return curve;
 }
 
