@@ -191,8 +191,8 @@ std::vector<double> gradedPieces(long pieces, double startRatio, double endRatio
 /// node and no other. An open curve with a count of its own (`count` > 0) has every point as a
 /// node when it has that many segments and is not graded, else that many pieces in all, spread
 /// over its spans between anchors by their lengths, with no far points added (the count must
-/// hold). `grading`: per curve point,
-/// the ratio of the pieces shrinking toward it where it ends a span (gradedPieces), else 0.
+/// hold). `grading`: per curve point, the ratio of the pieces shrinking toward it where it ends a
+/// span (gradedPieces), else 0.
 std::vector<CurveNode> sampleCurve(const Walk& walk, bool keepPoints, long count, double spacing,
                                    double tolerance, double sagittaShare,
                                    const std::vector<double>& grading) {
