@@ -306,6 +306,49 @@ TEST(NarrowSheet, ARingGetsOneRowRoundItsHole) {
     EXPECT_NE(constraint.role, PointRole::Free);
 }
 
+TEST(NarrowSheet, AWebAcrossARingIsItsRungWithTheWebsNodes) {
+  // The square ring of ARingGetsOneRowRoundItsHole with a web (part 3) standing on its edge
+  // x = 2 from the outside (node 3 at y = 0) to the hole (node 8 at y = 1): one cut through the
+  // ring that parts nothing. The ring is meshed as before, with that edge as the bridge between
+  // its loops: at a junction spacing of 0.5 its node at y = 0.5 is a fixed node of the mesh, on
+  // an edge to each end of the rung, so that the web does not hang on the ring's faces.
+  FeModel model = strip(4, 4, 1.0, 1.0);
+  model.shells.erase(model.shells.begin() + 9, model.shells.begin() + 11);
+  model.shells.erase(model.shells.begin() + 5, model.shells.begin() + 7);
+  const Id top = 1000;
+  model.nodes.push_back({top, {2.0, 0.0, 2.0}});
+  model.nodes.push_back({top + 1, {2.0, 1.0, 2.0}});
+  model.shells.push_back({500, 3, {3, 8, top + 1, top}, 4});
+  model.partOrAdd(3);
+  SheetSettings uncut;  // the web's line stays inside the ring's one sheet
+  uncut.sheetCuts = std::make_shared<const std::vector<std::array<Id, 2>>>();
+  const std::vector<Sheet> sheets = buildSheets(model, 1, uncut);
+  ASSERT_EQ(sheets.size(), 1u);
+  const std::vector<extract::SheetPatch> patches = extract::sheetPatches(sheets.front());
+  ASSERT_EQ(patches.size(), 1u);
+  ASSERT_EQ(patches.front().loops.size(), 2u);
+  EXPECT_EQ(patches.front().rung.size(), 2u);
+  const QuadMesh mesh = meshStrip(model, 1, 1.0, 0.05, 0.5, uncut);
+  EXPECT_NEAR(area(mesh), 12.0, 1e-9);
+  EXPECT_EQ(topologyCounts(mesh).boundaryLoops, 2u);
+  std::size_t middle = mesh.points.size();
+  for (std::size_t p = 0; p < mesh.points.size(); ++p)
+    if (geom::distance(mesh.points[p], {2.0, 0.5, 0.0}) < 1e-9) middle = p;
+  ASSERT_LT(middle, mesh.points.size());
+  EXPECT_NE(mesh.constraints[middle].role, PointRole::Free);
+  std::set<geom::Vec3> joined;  // the points sharing an edge with the rung's middle node
+  for (const auto& face : mesh.faces) {
+    const int n = cornerCount(face);
+    for (int c = 0; c < n; ++c)
+      if (face[std::size_t(c)] == middle) {
+        joined.insert(mesh.points[face[std::size_t((c + 1) % n)]]);
+        joined.insert(mesh.points[face[std::size_t((c + n - 1) % n)]]);
+      }
+  }
+  EXPECT_EQ(joined.count({2.0, 0.0, 0.0}), 1u);
+  EXPECT_EQ(joined.count({2.0, 1.0, 0.0}), 1u);
+}
+
 TEST(NarrowSheet, ARoundRingsLoopsGetNodesCloseEnoughToKeepItsArea) {
   // A flat ring between radii 6 and 8.6 in 24 quads round, meshed at 9 (the edge of a frame at a
   // deck's size): nodes about 9 apart on its loops, plus the loop points farther than the

@@ -330,15 +330,40 @@ QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& 
   return mesh;
 }
 
+/// The nodes the junctions prescribe inside a rung (its points from one loop to the other): its
+/// inner points that are nodes and the nodes inside its edges, in its order.
+std::vector<Vec3> rungNodes(const std::vector<Vec3>& rung, const JunctionNodes& junctions) {
+  std::vector<Vec3> nodes;
+  for (std::size_t i = 0; i + 1 < rung.size(); ++i) {
+    if (i > 0 && junctions.isNodePoint(rung[i])) nodes.push_back(rung[i]);
+    const JunctionEdgeNodes* edge = junctions.edge(rung[i], rung[i + 1]);
+    if (edge == nullptr) continue;
+    if (edge->from == rung[i])
+      nodes.insert(nodes.end(), edge->points.begin(), edge->points.end());
+    else
+      nodes.insert(nodes.end(), edge->points.rbegin(), edge->points.rend());
+  }
+  return nodes;
+}
+
+/// The index of the node of `nodes` at p exactly, or nodes.size().
+std::size_t nodeAt(const std::vector<LoopNode>& nodes, const Vec3& p) {
+  for (std::size_t k = 0; k < nodes.size(); ++k)
+    if (nodes[k].point == p) return k;
+  return nodes.size();
+}
+
 /// The mesh of a ring patch (two loops, a band or a tube): the nodes of both loops, the second's
 /// lined up with the first's; rows swept from one loop to the other where they fit
-/// (mapped_patch.h, mappedRing), else both joined by a bridge between their closest nodes into
-/// one polygon (each loop run once, the bridge there and back), which polygonQuads meshes; the
-/// bridge's two visits are one edge again afterwards.
+/// (mapped_patch.h, mappedRing) and no rung crosses it, else both joined by a bridge into one
+/// polygon (each loop run once, the bridge there and back), which polygonQuads meshes; the
+/// bridge's two visits are one line of edges again afterwards. The bridge is the rung (its points
+/// from a corner of the first loop to one of the second, with the junction nodes inside it), or
+/// without one the shortest chord between the loops' nodes that lies on the surface.
 QuadMesh meshRing(const std::array<std::vector<Vec3>, 2>& loops,
-                  const std::array<std::vector<char>, 2>& corners, const QuadMesh& surface,
-                  const ReferenceSurface& reference, const JunctionNodes& junctions,
-                  const NarrowSheetSettings& settings) {
+                  const std::array<std::vector<char>, 2>& corners, const std::vector<Vec3>& rung,
+                  const QuadMesh& surface, const ReferenceSurface& reference,
+                  const JunctionNodes& junctions, const NarrowSheetSettings& settings) {
   const std::vector<LoopNode> first = loopNodes(loops[0], corners[0], junctions, settings, {});
   std::vector<FacingSource> across;
   const PolylineParam firstLoop(loops[0], true);
@@ -347,9 +372,11 @@ QuadMesh meshRing(const std::array<std::vector<Vec3>, 2>& loops,
       across.push_back({node.point, tangentAt(firstLoop, node.param)});
   const std::vector<LoopNode> second = loopNodes(loops[1], corners[1], junctions, settings, across);
   const auto surfaceNormal = [&](const Vec3& p) { return normalAt(surface, reference, p); };
-  if (const auto rows = mappedRing({PolylineParam(loops[0], true), PolylineParam(loops[1], true)},
-                                   {first, second}, settings.spacing, reference, surfaceNormal,
-                                   settings.tolerance, settings.sagittaShare)) {
+  if (const auto rows =
+          !rung.empty() ? std::nullopt
+                        : mappedRing({PolylineParam(loops[0], true), PolylineParam(loops[1], true)},
+                                     {first, second}, settings.spacing, reference, surfaceNormal,
+                                     settings.tolerance, settings.sagittaShare)) {
     QuadMesh mesh;
     for (std::uint32_t l = 0; l < 2; ++l) {
       mesh.curves.push_back({loops[l], true, PointRole::Boundary});
@@ -365,10 +392,16 @@ QuadMesh meshRing(const std::array<std::vector<Vec3>, 2>& loops,
     for (const auto& quad : rows->quads) mesh.faces.push_back({quad[0], quad[1], quad[2], quad[3]});
     return mesh;
   }
-  // The bridge: the closest pair of nodes whose chord lies on the surface.
   std::size_t a0 = first.size(), b0 = second.size();
+  if (!rung.empty()) {
+    a0 = nodeAt(first, rung.front());
+    b0 = nodeAt(second, rung.back());
+    if (a0 == first.size() || b0 == second.size())
+      throw NarrowSheetRefusal("the ends of a rung across it are no nodes of its loops");
+  }
+  // Else the bridge: the closest pair of nodes whose chord lies on the surface.
   double shortest = std::numeric_limits<double>::infinity();
-  for (std::size_t a = 0; a < first.size(); ++a)
+  for (std::size_t a = 0; a < first.size() && rung.empty(); ++a)
     for (std::size_t b = 0; b < second.size(); ++b) {
       const double d = distance(first[a].point, second[b].point);
       if (d < shortest &&
@@ -396,8 +429,23 @@ QuadMesh meshRing(const std::array<std::vector<Vec3>, 2>& loops,
       polygon.push_back(nodes[i].point);
     }
   };
+  // The rung's inner nodes, fixed, visited on the way to the second loop and back.
+  const std::uint32_t rungBase = std::uint32_t(mesh.points.size());
+  const std::vector<Vec3> inner = rungNodes(rung, junctions);
+  for (const Vec3& p : inner) {
+    mesh.points.push_back(p);
+    mesh.constraints.push_back({PointRole::Corner, 0});
+  }
   add(first, a0, 0);
+  for (std::size_t k = 0; k < inner.size(); ++k) {
+    pointOf.push_back(rungBase + std::uint32_t(k));
+    polygon.push_back(inner[k]);
+  }
   add(second, b0, 1);
+  for (std::size_t k = inner.size(); k-- > 0;) {
+    pointOf.push_back(rungBase + std::uint32_t(k));
+    polygon.push_back(inner[k]);
+  }
   addRowFaces(mesh, polygon, pointOf, surface, reference, settings);
   return mesh;
 }
@@ -411,15 +459,20 @@ QuadMesh meshPatches(const Sheet& sheet, const std::vector<SheetPatch>& patches,
   for (const SheetPatch& patch : patches) {
     std::array<std::vector<Vec3>, 2> loopPoints;
     std::array<std::vector<char>, 2> corner;
+    std::vector<Vec3> rung;
+    for (const PointIndex p : patch.rung) rung.push_back(sheet.points[p]);
     for (std::size_t l = 0; l < patch.loops.size(); ++l)
       for (const PointIndex p : patch.loops[l]) {
         loopPoints[l].push_back(sheet.points[p]);
-        corner[l].push_back(corners.count(p) != 0);
+        // A rung's ends are nodes of the loops.
+        const bool rungEnd =
+            !patch.rung.empty() && (p == patch.rung.front() || p == patch.rung.back());
+        corner[l].push_back(corners.count(p) != 0 || rungEnd);
       }
     patchMeshes.push_back(
         patch.loops.size() == 1
             ? meshLoop(loopPoints[0], corner[0], surface, reference, junctions, settings)
-            : meshRing(loopPoints, corner, surface, reference, junctions, settings));
+            : meshRing(loopPoints, corner, rung, surface, reference, junctions, settings));
     patchMeshes.back().part = sheet.part;
   }
   return joinAtJunctions(patchMeshes);

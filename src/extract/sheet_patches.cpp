@@ -69,6 +69,42 @@ std::vector<std::vector<PointIndex>> patchLoops(const Sheet& sheet,
   return loops;
 }
 
+/// The points of `edges` as one path from a point of loops[0] to a point of loops[1], its inner
+/// points on neither loop; empty when `loops` is no ring or `edges` are not such a path.
+std::vector<PointIndex> ringRung(const std::vector<std::vector<PointIndex>>& loops,
+                                 const std::vector<Edge>& edges) {
+  if (loops.size() != 2) return {};
+  std::map<PointIndex, std::vector<PointIndex>> next;
+  for (const auto& [a, b] : edges) {
+    next[a].push_back(b);
+    next[b].push_back(a);
+  }
+  const std::set<PointIndex> first(loops[0].begin(), loops[0].end()),
+      second(loops[1].begin(), loops[1].end());
+  PointIndex start = kNoPoint;
+  for (const auto& [p, neighbours] : next)
+    if (neighbours.size() == 1 && first.count(p) != 0) start = p;
+  if (start == kNoPoint) return {};
+  std::vector<PointIndex> path{start};
+  for (PointIndex previous = kNoPoint, at = start; path.size() <= edges.size();) {
+    const std::vector<PointIndex>& around = next.at(at);
+    const PointIndex to = around[0] != previous ? around[0]
+                          : around.size() > 1   ? around[1]
+                                                : kNoPoint;
+    if (to == kNoPoint) return {};
+    path.push_back(to);
+    previous = at;
+    at = to;
+    const std::size_t degree = next.at(at).size();
+    if (second.count(at) != 0) break;
+    if (degree != 2 || first.count(at) != 0) return {};
+  }
+  if (path.size() != edges.size() + 1 || second.count(path.back()) == 0 ||
+      next.at(path.back()).size() != 1)
+    return {};
+  return path;
+}
+
 /// The Euler characteristic V - E + F of a patch.
 long eulerCharacteristic(const Sheet& sheet, const std::vector<std::size_t>& faces) {
   std::set<Edge> edges;
@@ -97,12 +133,13 @@ std::vector<SheetPatch> sheetPatches(const Sheet& sheet, bool atFeatureLines) {
   DisjointSets pieces(sheet.faces.size());
   for (const auto& [edge, faces] : edgeFaces)
     if (faces.size() == 2 && cuts.count(edge) == 0) pieces.join(faces[0], faces[1]);
+  // Cuts with the same piece on both sides, by the piece's root.
+  std::map<std::size_t, std::vector<Edge>> innerCuts;
   for (const Edge& cut : cuts) {
     const auto it = edgeFaces.find(cut);
     if (it != edgeFaces.end() && it->second.size() == 2 &&
         pieces.find(it->second[0]) == pieces.find(it->second[1]))
-      throw NarrowSheetRefusal(atFeatureLines ? "a junction curve or feature line ends inside it"
-                                              : "a junction curve ends inside it");
+      innerCuts[pieces.find(it->second[0])].push_back(cut);
   }
   std::map<std::size_t, std::size_t> patchOfRoot;
   std::vector<SheetPatch> patches;
@@ -118,6 +155,12 @@ std::vector<SheetPatch> sheetPatches(const Sheet& sheet, bool atFeatureLines) {
       throw NarrowSheetRefusal("it is neither a disk nor a ring (Euler characteristic " +
                                std::to_string(euler) + ", " + std::to_string(patch.loops.size()) +
                                " boundary loops)");
+    const auto inner = innerCuts.find(pieces.find(patch.faces.front()));
+    if (inner == innerCuts.end()) continue;
+    patch.rung = ringRung(patch.loops, inner->second);
+    if (patch.rung.empty())
+      throw NarrowSheetRefusal(atFeatureLines ? "a junction curve or feature line ends inside it"
+                                              : "a junction curve ends inside it");
   }
   return patches;
 }

@@ -15,18 +15,22 @@ namespace voxremesh::extract {
 struct SheetPatch {
   std::vector<std::size_t> faces;
   std::vector<std::vector<PointIndex>> loops;
+  /// A ring's rung: the points of the one cut running through it from a point of its first loop
+  /// to a point of its second (a web standing across a band), in that order; else empty.
+  std::vector<PointIndex> rung;
 };
 
 /// Cuts a sheet into patches along its inner junction edges: junction-curve edges with a face on
 /// both sides, rungs from one boundary loop to another too (a web standing on a strip's rung gets
 /// the rung's junction nodes on both patches' loops); and, when asked, along all edges of its
-/// feature lines (a box or a cup becomes its walls and its cap).
+/// feature lines (a box or a cup becomes its walls and its cap). A ring crossed by one cut from
+/// one of its loops to the other stays a ring with that cut as its rung.
 /// @param sheet           a sheet (buildSheets): manifold, consistently oriented
 /// @param atFeatureLines  cut along the feature lines too
 /// @return the patches in the order of their first face
 /// Throws NarrowSheetRefusal when a patch is neither a disk (one boundary loop, Euler
 /// characteristic 1) nor a ring (two loops, Euler characteristic 0), or a cut ends inside a
-/// patch.
+/// patch (other than a ring's rung).
 std::vector<SheetPatch> sheetPatches(const Sheet& sheet, bool atFeatureLines = false);
 
 }  // namespace voxremesh::extract
