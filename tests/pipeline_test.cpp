@@ -677,6 +677,29 @@ TEST(Pipeline, APartThatFailsAtItsSizeIsTriedAtHalfWithItsNeighboursSeams) {
     EXPECT_GT(report.seamsAfter.sharedNodes.count(pair), 0u) << pair.first << "-" << pair.second;
 }
 
+TEST(Pipeline, APartStillKeptAtHalfItsSizeIsTriedAtAQuarterWithItsNeighbours) {
+  // ISat_Launch_Sm_Rgd.dat at twice its size (4): part 2, a frame with strips 1 mm wide, fails
+  // the acceptance at 4 (37 % failing at best) and at 2 with its neighbours (6.2 %), and passes
+  // at 1 with them (as it does at the deck's own size halved). No part is then kept, and every
+  // pair of parts that shared nodes still does.
+  VOXREMESH_REQUIRE_SHARED_DECK(path, "ISat_Launch_Sm_Rgd.dat");
+  FeModel model = readDeck(path);
+  RemeshSettings settings;
+  settings.targetSize = 4.0;
+  const RemeshReport report = remeshDeck(model, settings);
+  ASSERT_EQ(report.parts.size(), 8u);
+  for (const RemeshedPart& part : report.parts)
+    EXPECT_NE(part.status, PartStatus::Kept) << part.plan.part << ": " << part.reason;
+  const RemeshedPart& frame = report.parts[1];
+  ASSERT_EQ(frame.plan.part, 2);
+  EXPECT_EQ(frame.status, PartStatus::Retried);
+  EXPECT_NEAR(frame.plan.targetSize, 1.0, 1e-12);
+  EXPECT_TRUE(test::contains(frame.reason, "at 1/4 of the size")) << frame.reason;
+  EXPECT_TRUE(test::contains(frame.reason, "at the full size: ")) << frame.reason;
+  for (const auto& [pair, before] : report.seamsBefore.sharedNodes)
+    EXPECT_GT(report.seamsAfter.sharedNodes.count(pair), 0u) << pair.first << "-" << pair.second;
+}
+
 /// A 60 x 60 plate of 3-unit quads in z = 0 (part 1) with a stiffener 9 tall of 3-unit quads
 /// (part `stiffenerPart`, 2 by default) standing on the line y = 30 from x = 3 x `from` to
 /// 3 x `to`: they share its nodes.

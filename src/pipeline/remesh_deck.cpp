@@ -218,17 +218,21 @@ bool mayHalve(std::size_t i, const RemeshedPart& part, const std::vector<FeModel
   return false;
 }
 
-/// A part tried again at half its size (mayHalve) says so: "retried" when it passed, with what the
-/// full size gave; both sizes' attempts when it was kept again.
-void describeHalved(RemeshedPart& part, const std::string& fullSizeReason) {
-  const std::string full = "at the full size: " + fullSizeReason;
+/// A part tried again at a fraction of its size (mayHalve; `size` says which, in words, e.g.
+/// "half the size") says so: "retried" when it passed, with what the larger sizes gave
+/// (`earlierReason`, the full size's in words when it is the first halving); every size's
+/// attempts when it was kept again.
+void describeHalved(RemeshedPart& part, const std::string& earlierReason, const std::string& size) {
+  const std::string earlier = earlierReason.rfind("at the full size: ", 0) == 0
+                                  ? earlierReason
+                                  : "at the full size: " + earlierReason;
+  const std::string at = "at " + size + ", its seams refined with it";
   if (part.status == PartStatus::Kept) {
-    part.reason = full + "; at half the size, its seams refined with it: " + part.reason;
+    part.reason = earlier + "; " + at + ": " + part.reason;
     return;
   }
   part.status = PartStatus::Retried;
-  part.reason = "at half the size, its seams refined with it (" + full + ")" +
-                (part.reason.empty() ? "" : "; " + part.reason);
+  part.reason = at + " (" + earlier + ")" + (part.reason.empty() ? "" : "; " + part.reason);
 }
 
 /// Per plan, the plans whose parts share nodes with it (their shells are in its model), ascending.
@@ -374,6 +378,8 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
   std::vector<std::size_t> mergedNodes;
   const std::vector<FeModel> models = partModels(deck, plans, mergedNodes);
   const std::vector<std::vector<std::size_t>> neighbours = planNeighbours(models, plans);
+  std::vector<double> ownSize;  // each plan's target size before the halving passes
+  for (const PartPlan& plan : plans) ownSize.push_back(plan.targetSize);
   std::vector<double> junctionSpacing;
   const std::vector<std::unordered_set<Id>> hardPoints = partHardPoints(deck, plans);
   std::unordered_map<Id, double> seamSpacing;
@@ -404,10 +410,10 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
   // that part, are done again in the next. After the first round, when parts were kept that
   // mayHalve allows, the first round is done again with those at half their size; its results
   // stay group by group (takeHalvedGroups) where more parts pass so, none that passed is lost
-  // and no more seam points hang.
+  // and no more seam points hang. Those still kept are tried so at a quarter of their size, and
+  // so on: settings.retries halvings at most, as a part's own retries.
   RemeshSettings halvedSettings = settings;  // a halved part's retries stop at the same voxel
-  halvedSettings.retries = std::max(0, settings.retries - 1);
-  halvedSettings.finestVoxelShare = std::min(1.0, 2.0 * settings.finestVoxelShare);
+  std::string halvedSize;                    // the size of the halved parts, in words
   std::vector<std::string> fullSizeReason(plans.size());  // non-empty: the plan is halved
   // Remeshes the listed plans in parallel; `first`: in the first round.
   const auto remeshAll = [&](const std::vector<std::size_t>& list, bool first, bool tellDone) {
@@ -423,7 +429,7 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
             models[i], plans[i], halved ? halvedSettings : settings, surroundings, meshes[i],
             [&](const char* stage) { tell(stage, plans[i].part, false); });
         if (halved && first)
-          describeHalved(result, fullSizeReason[i]);
+          describeHalved(result, fullSizeReason[i], halvedSize);
         else if (!first && result.status == PartStatus::Kept)
           result.reason = redoneReason(report.parts[i], result, isFixed,
                                        keptNeighbours(models[i], plans[i].part, fixed));
@@ -434,19 +440,24 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
   };
   for (bool first = true; !todo.empty(); first = false) {
     remeshAll(todo, first, first);
-    bool anyHalvable = false;
-    for (const std::size_t i : todo)
-      if (first && mayHalve(i, report.parts[i], models, plans, keptFromStart, settings)) {
-        fullSizeReason[i] = report.parts[i].reason;
-        anyHalvable = true;
-      }
-    if (anyHalvable) {
+    for (int level = 1; first && level <= settings.retries; ++level) {
+      bool anyHalvable = false;
+      for (const std::size_t i : todo)
+        if (mayHalve(i, report.parts[i], models, plans, keptFromStart, settings)) {
+          fullSizeReason[i] = report.parts[i].reason;
+          anyHalvable = true;
+        }
+      if (!anyHalvable) break;
+      const int share = 1 << level;  // the halved parts' size: 1 / share of their own
+      halvedSettings.retries = std::max(0, settings.retries - level);
+      halvedSettings.finestVoxelShare = std::min(1.0, share * settings.finestVoxelShare);
+      halvedSize = level == 1 ? "half the size" : "1/" + std::to_string(share) + " of the size";
       pipeline::RoundResult full{report.parts, meshes, plans};
       std::vector<std::uint8_t> halved(plans.size(), 0), redone(plans.size(), 0);
       for (const std::size_t i : todo) redone[i] = 1;
       for (std::size_t i = 0; i < plans.size(); ++i)
         if (!fullSizeReason[i].empty()) {
-          plans[i].targetSize *= 0.5;
+          plans[i].targetSize = ownSize[i] / share;
           halved[i] = 1;
         }
       updateSpacing();
