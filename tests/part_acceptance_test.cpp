@@ -265,6 +265,20 @@ TEST(HalfPass, AGroupsResultsStayWhenMoreOfItsPartsPassAndNoneIsLost) {
   EXPECT_EQ(full.parts[3].status, S::Remeshed);
 }
 
+TEST(HalfPass, PointsInsideTheOtherMeshsEdgesHangWhereverTheEdgesAre) {
+  // Two parts sharing the area of a 2 x 2 square (layers on the same nodes), one meshed with unit
+  // quads, the other with quads of 0.5. The finer mesh's points in the middle of the coarser's
+  // edges hang: 8 on its boundary, 4 on its inner edges (a T-junction or a shared area does not
+  // conform either). Its points inside the coarser's faces and on its corners do not; no point of
+  // the coarser mesh hangs on the finer one.
+  const QuadMesh coarse = test::unitGrid(2);
+  QuadMesh fine = test::unitGrid(4);
+  for (auto& point : fine.points)
+    for (double& coordinate : point) coordinate *= 0.5;
+  EXPECT_EQ(pipeline::hangingPoints(fine, coarse, 1e-6), 12u);
+  EXPECT_EQ(pipeline::hangingPoints(coarse, fine, 1e-6), 0u);
+}
+
 TEST(HardPoints, APointOnAnEdgeSplitsItAndBothFacesAlongIt) {
   // A 2 x 2 grid of unit quads; a hard point on the inner edge x = 1, y = 0..1 lies inside no
   // face: it splits the edge, each of its two quads becoming three triangles round it, oriented

@@ -10,13 +10,13 @@ namespace voxremesh::pipeline {
 
 namespace {
 
-/// A boundary point of one part's new mesh closer than this share of the target size to the inside
-/// of an edge of a neighbour's new mesh hangs on it: their seam is not conforming there.
+/// A point of one part's new mesh closer than this share of the target size to the inside of an
+/// edge of a neighbour's new mesh hangs on it: their meshes do not conform there.
 constexpr double kHangingShare = 0.005;
 
 /// Over the pairs of accepted parts that share nodes, one of them in `among` (per plan, 1 or 0),
-/// the boundary points of one hanging on the other's boundary (hangingPoints, within
-/// kHangingShare of the smaller target size).
+/// the points of one hanging on the other's edges (hangingPoints, within kHangingShare of the
+/// smaller target size).
 std::size_t hangingSeamPoints(const std::vector<QuadMesh>& meshes,
                               const std::vector<RemeshedPart>& parts,
                               const std::vector<std::vector<std::size_t>>& neighbours,

@@ -35,11 +35,10 @@ struct RoundResult {
 
 /// Takes the half pass's results into `result` (the full size's) group by group, in the order of
 /// their smallest plan index: a group's results are taken when more of its parts pass, none of
-/// them that passed at the full size is lost, and no more boundary points of accepted parts hang
-/// on a neighbour's boundary along its parts (hangingPoints, within 0.005 of the smaller target
-/// size). `half` is left with the results not taken. Deterministic.
-/// Preconditions: `result`, `half` and `group` (halvingGroups) have one entry per plan;
-/// `neighbours` as for halvingGroups.
+/// them that passed at the full size is lost, and no more points of accepted parts hang on a
+/// neighbour's edges (hangingPoints, within 0.005 of the smaller target size). `half` is left with
+/// the results not taken. Deterministic. Preconditions: `result`, `half` and `group`
+/// (halvingGroups) have one entry per plan; `neighbours` as for halvingGroups.
 void takeHalvedGroups(RoundResult& result, RoundResult& half, const std::vector<std::size_t>& group,
                       const std::vector<std::vector<std::size_t>>& neighbours);
 

@@ -53,9 +53,10 @@ PartAcceptance keptPartQuality(const FeModel& model, const PartPlan& plan,
 /// Preconditions: the shells name nodes of the model; tolerance > 0.
 std::size_t mergeCoincidentNodes(FeModel& model, Id part, double tolerance);
 
-/// Boundary points of mesh `a` that lie inside a boundary edge of mesh `b` (closer to it than
-/// `tolerance`, away from its ends): nodes one side of a seam has and the other lacks, where two
-/// parts' new meshes meet. Preconditions: faces name existing points; tolerance > 0.
+/// Points of mesh `a` that lie inside an edge of mesh `b` (closer to it than `tolerance`, away
+/// from its ends): nodes one side has and the other lacks where two parts' new meshes meet, along
+/// a seam, where one stands on the other (a T-junction) or where they share an area (layers on
+/// the same nodes). Preconditions: faces name existing points; tolerance > 0.
 std::size_t hangingPoints(const QuadMesh& a, const QuadMesh& b, double tolerance);
 
 /// The faces of a sheet as a mesh (oriented as the sheet), the surface its new mesh is projected
