@@ -41,7 +41,8 @@ struct TiedCurve {
 struct CurveTies {
   std::vector<std::pair<CurveSide, CurveSide>> pairs;
   std::vector<std::pair<NodeEdge, TiedCurve>> curves;
-  std::vector<std::pair<Id, double>> graded;  ///< sharp corners: node ID, wedgeRatio
+  /// Sharp corners: the corner's node ID and the next one's along a side, wedgeRatio.
+  std::vector<std::pair<NodeEdge, double>> graded;
 };
 
 /// The edge between two points of a sheet, by point index, lower first.
@@ -115,9 +116,10 @@ void tieOppositeCurves(const Sheet& sheet, CurveTies& ties) {
 }
 
 /// Adds to `graded` the points of the sheet's boundary loops where the sheet spans less than a
-/// quad's smallest angle (the sum of its faces' angles there), with their wedgeRatio.
+/// quad's smallest angle (the sum of its faces' angles there), once per side of the wedge (the
+/// loop's next and previous points), with their wedgeRatio.
 void gradeSharpCorners(const Sheet& sheet, const QualitySettings& criteria,
-                       std::vector<std::pair<Id, double>>& graded) {
+                       std::vector<std::pair<NodeEdge, double>>& graded) {
   std::vector<double> angle(sheet.points.size(), 0.0);
   for (const auto& face : sheet.faces) {
     const int corners = face[3] == kNoPoint ? 3 : 4;
@@ -128,10 +130,16 @@ void gradeSharpCorners(const Sheet& sheet, const QualitySettings& criteria,
       angle[face[std::size_t(c)]] += angleDeg(toNext, toPrevious);
     }
   }
-  for (const Polyline& loop : sheet.boundaryLoops)
-    for (const PointIndex p : loop.points)
-      if (const double ratio = wedgeRatio(angle[p], criteria); ratio > 0.0)
-        graded.emplace_back(sheet.pointNodeIds[p], ratio);
+  for (const Polyline& loop : sheet.boundaryLoops) {
+    const std::size_t n = loop.points.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const double ratio = wedgeRatio(angle[loop.points[i]], criteria);
+      if (!(ratio > 0.0)) continue;
+      const Id corner = sheet.pointNodeIds[loop.points[i]];
+      for (const std::size_t side : {(i + 1) % n, (i + n - 1) % n})
+        graded.push_back({{corner, sheet.pointNodeIds[loop.points[side]]}, ratio});
+    }
+  }
 }
 
 /// The ties of one part (see CurveTies); none when its sheets cannot be built.
@@ -241,8 +249,8 @@ SeamSampling seamSampling(const std::vector<FeModel>& models, const std::vector<
   for (const auto& [key, curve] : curves)
     if (count.at(key) > curve.pieces) sampling.counts[key] = count.at(key);
   for (const CurveTies& ties : perPlan)
-    for (const auto& [node, ratio] : ties.graded) {
-      const auto [it, added] = sampling.grading.emplace(node, ratio);
+    for (const auto& [side, ratio] : ties.graded) {
+      const auto [it, added] = sampling.grading.emplace(side, ratio);
       if (!added) it->second = std::min(it->second, ratio);
     }
   return sampling;
@@ -258,9 +266,20 @@ void setSeamSampling(std::vector<Sheet>& sheets, const SeamSampling& sampling) {
       }
       curve.grading.clear();
       if (sampling.grading.empty()) continue;
-      for (std::size_t i = 0; i < curve.points.size(); ++i) {
-        const auto it = sampling.grading.find(sheet.pointNodeIds[curve.points[i]]);
-        if (it != sampling.grading.end()) curve.grading.emplace_back(i, it->second);
+      // A point is graded where the curve runs from it along a graded side of a wedge.
+      const std::size_t n = curve.points.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        double ratio = 0.0;
+        for (const long step : {1L, -1L}) {
+          const long j = long(i) + step;
+          if (!curve.closed && (j < 0 || j >= long(n))) continue;
+          const PointIndex next = curve.points[std::size_t((j + long(n)) % long(n))];
+          const auto it = sampling.grading.find(
+              {sheet.pointNodeIds[curve.points[i]], sheet.pointNodeIds[next]});
+          if (it != sampling.grading.end())
+            ratio = ratio > 0.0 ? std::min(ratio, it->second) : it->second;
+        }
+        if (ratio > 0.0) curve.grading.emplace_back(i, ratio);
       }
     }
 }

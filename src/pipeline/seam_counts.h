@@ -43,9 +43,11 @@ struct SeamSampling {
   /// Per curve that must get more pieces than its spacing gives it, that count (see the top of
   /// the file); curves not listed keep their sampling.
   SeamCounts counts;
-  /// Per node (by ID) at a sharp corner of a narrow sheet, the ratio of the pieces shrinking
-  /// toward it on the junction curves ending there (wedgeRatio; the smallest any sheet asks).
-  std::unordered_map<Id, double> grading;
+  /// Per sharp corner of a narrow sheet and side of its wedge, keyed by the corner's node ID and
+  /// the ID of the next node along that side, the ratio of the pieces shrinking toward the corner
+  /// on the junction curve running along that side (wedgeRatio; the smallest any sheet asks).
+  /// Curves that only end there (along another sheet's side) keep even pieces.
+  std::unordered_map<NodeEdge, double, NodeEdgeHash> grading;
 };
 
 /// The growth ratio of the pieces of a junction curve toward a corner of `cornerDeg` degrees
