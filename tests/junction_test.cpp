@@ -135,6 +135,34 @@ TEST(JunctionNodes, PiecesShrinkTowardAGradedEndWithinItsRatio) {
   EXPECT_EQ(same.nodes(), nodes.nodes());
 }
 
+TEST(JunctionNodes, NodesStandAtStationsWithEachStretchsOwnCount) {
+  // A straight seam 12 long (points 1 apart) facing, across a narrow patch, two curves that meet
+  // across from x = 5: a station there, 2 pieces before it and 4 after (the counts of the curves
+  // across), so that its nodes line up with theirs instead of lying 2 apart at the spacing 2.
+  // Reversed, the same nodes (stations and their pieces go with the curve's direction).
+  VolumeCurve curve;
+  for (int i = 0; i <= 12; ++i) curve.points.push_back({double(i), 0.0, 0.0});
+  curve.stations = {{5.0, 0.3, 0.0}};
+  curve.stationPieces = {2, 4};
+  const extract::JunctionNodes nodes({curve}, 2.0, 0.4);
+  std::vector<double> xs;
+  for (const auto& p : nodes.nodes()) xs.push_back(p[0]);
+  std::sort(xs.begin(), xs.end());
+  const std::vector<double> expected{0.0, 2.5, 5.0, 6.75, 8.5, 10.25, 12.0};
+  ASSERT_EQ(xs.size(), expected.size());
+  for (std::size_t k = 0; k < xs.size(); ++k) EXPECT_NEAR(xs[k], expected[k], 1e-9) << k;
+  VolumeCurve reversed = curve;
+  std::reverse(reversed.points.begin(), reversed.points.end());
+  reversed.stationPieces = {4, 2};
+  const extract::JunctionNodes same({reversed}, 2.0, 0.4);
+  EXPECT_EQ(same.nodes(), nodes.nodes());
+  // Stations that do not fit (a stretch with no pieces) leave the even spacing.
+  curve.stationPieces = {0, 6};
+  const extract::JunctionNodes even({curve}, 2.0, 0.4);
+  EXPECT_EQ(even.nodes().size(), 7u);
+  EXPECT_NEAR(even.nodes()[1][0] - even.nodes()[0][0], 2.0, 1e-9);
+}
+
 TEST(JunctionNodes, AnEvenPieceEndingOnACurvePointButForRoundingEndsOnIt) {
   // 10 long in three pieces at 10/3: the first piece ends 1e-14 short of the curve point there.
   // That point is the node (every sheet along the curve then has it), not a node 1e-14 from it

@@ -338,6 +338,59 @@ TEST(Pipeline, AWedgeBetweenSeamsIsARowWhoseRungsShrinkTowardItsTip) {
   EXPECT_EQ(report.parts[0].acceptance.failing, 0u) << report.parts[0].reason;
 }
 
+/// A strip 40 x 1.2 (part 1, 10 x 2 quads in z = 0) between two flanges 3 wide in its plane
+/// (parts 3 and 4, along y = 0 and y = 1.2), with two webs standing on the two halves of its end
+/// x = 0 (parts 2 and 5, up and down): its end is two curves, two elements across.
+FeModel stripTwoElementsAcrossAtItsEnd() {
+  FeModel model;
+  const auto strip = [](int i, int j) { return Id(1 + 3 * i + j); };  // (4 i, 0.6 j, 0)
+  for (int i = 0; i <= 10; ++i) {
+    for (int j = 0; j <= 2; ++j) test::addNode(model, strip(i, j), 4.0 * i, 0.6 * j);
+    test::addNode(model, 100 + i, 4.0 * i, -3.0);
+    test::addNode(model, 200 + i, 4.0 * i, 4.2);
+  }
+  test::addNode(model, 300, 0.0, 0.6, 1.0);
+  test::addNode(model, 301, 0.0, 1.2, 1.0);
+  test::addNode(model, 302, 0.0, 0.0, -1.0);
+  test::addNode(model, 303, 0.0, 0.6, -1.0);
+  Id shell = 1;
+  for (int i = 0; i < 10; ++i) {
+    for (int j = 0; j < 2; ++j)
+      test::addShell(model, shell++, 1,
+                     {strip(i, j), strip(i + 1, j), strip(i + 1, j + 1), strip(i, j + 1)});
+    test::addShell(model, shell++, 3, {100 + i, 101 + i, strip(i + 1, 0), strip(i, 0)});
+    test::addShell(model, shell++, 4, {strip(i, 2), strip(i + 1, 2), 201 + i, 200 + i});
+  }
+  test::addShell(model, shell++, 2, {strip(0, 1), strip(0, 2), 301, 300});
+  test::addShell(model, shell++, 5, {strip(0, 0), strip(0, 1), 303, 302});
+  return model;
+}
+
+TEST(Pipeline, AStripTwoElementsAcrossGetsPiecesAlongItWithinTheAspectLimit) {
+  // At size 4 the strip is meshed from its boundary with its seams' spacing, 4 (its width times
+  // the aspect limit over 1.5): one element 1.2 across would pass, but its end has a node in the
+  // middle (the two webs), so it is two rows of 0.6. The seams along it get the pieces that keep
+  // their quads within the aspect limit against those 0.6 rows (14, not 10), on both parts of
+  // each seam: the strip passes at its first attempt with no quad longer than 5 times its width.
+  FeModel model = stripTwoElementsAcrossAtItsEnd();
+  const RemeshReport report = remeshExpectingNoneKept(model, 4.0);
+  ASSERT_EQ(report.parts.size(), 5u);
+  const RemeshedPart& strip = report.parts[0];
+  ASSERT_EQ(strip.plan.part, 1);
+  EXPECT_EQ(strip.status, PartStatus::Remeshed) << strip.reason;
+  EXPECT_EQ(strip.acceptance.failing, 0u) << strip.reason;
+  std::set<Id> onSeam;  // the nodes the strip shares with the flange along y = 0
+  std::set<Id> flange;
+  for (const Shell& shell : model.shells)
+    for (int c = 0; c < shell.nodeCount; ++c)
+      (shell.part == 1 ? onSeam : flange).insert(shell.nodes[std::size_t(c)]);
+  std::size_t shared = 0;
+  for (const Node& node : model.nodes)
+    shared += onSeam.count(node.id) && flange.count(node.id) && std::abs(node.xyz[1]) < 1e-9 &&
+              std::abs(node.xyz[2]) < 1e-9;
+  EXPECT_GE(shared, 15u);
+}
+
 /// The report of one part of a deck remeshed alone at the default settings (the other parts
 /// kept).
 RemeshedPart remeshOnePart(const std::string& path, Id part, double size = 0.0) {

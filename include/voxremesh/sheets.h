@@ -123,6 +123,12 @@ struct Polyline {
   /// with the largest ratio between the distances of two consecutive nodes from it; empty: even
   /// pieces.
   std::vector<std::pair<std::size_t, double>> grading{};
+  /// Junction curves only: points on the curve, in its order, where nodes must stand because the
+  /// curves across a narrow sheet's four-sided patch end there (seamSampling); the curve is then
+  /// cut into stationPieces[k] pieces between station k - 1 (or its start) and station k (or its
+  /// end), stations.size() + 1 entries. Empty: none.
+  std::vector<std::array<double, 3>> stations{};
+  std::vector<long> stationPieces{};
 };
 
 /// One manifold, consistently oriented sheet (with boundary) of a part.

@@ -102,10 +102,13 @@ struct VolumeCurve {
   /// Junction curves: the points toward which the pieces shrink, with their ratio (see
   /// Polyline::grading, sheets.h).
   std::vector<std::pair<std::array<double, 3>, double>> grading{};
+  /// Junction curves: see Polyline::stations and stationPieces (sheets.h), in this curve's order.
+  std::vector<std::array<double, 3>> stations{};
+  std::vector<long> stationPieces{};
 };
 
 /// A curve of a sheet (its boundary loop, feature line or junction curve) in world coordinates,
-/// with its sampling (closed, keepPoints, nodeSpacing, nodeCount, grading).
+/// with its sampling (closed, keepPoints, nodeSpacing, nodeCount, grading, stations).
 /// Throws std::invalid_argument when the curve refers to a point the sheet does not have.
 VolumeCurve worldCurve(const Sheet& sheet, const Polyline& line);
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "extract/polyline_param.h"
 #include "geometry/chord_limit.h"
 
 namespace voxremesh::extract {
@@ -185,6 +186,69 @@ std::vector<double> gradedPieces(long pieces, double startRatio, double endRatio
   return weights;
 }
 
+/// The nodes of an open curve with stations (VolumeCurve::stations): its anchors (`anchors`,
+/// curve points, ascending) and the stations cut it into spans; the spans of one stretch (between
+/// two stations, or a station and an end) share that stretch's pieces by their lengths
+/// (spanPieces), graded toward graded anchor points as sampleCurve grades. Empty when the
+/// stations do not fit the curve (not strictly inside it, in order and apart, or a stretch with
+/// fewer pieces than spans).
+std::vector<CurveNode> sampleWithStations(const Walk& walk, const std::vector<std::size_t>& anchors,
+                                          const std::vector<Point3>& stations,
+                                          const std::vector<long>& stationPieces,
+                                          const std::vector<double>& grading) {
+  const double length = walk.arc.back(), apart = 1e-6 * length;
+  const PolylineParam line(walk.points, false);
+  std::vector<double> cuts;  // station params
+  for (const Point3& station : stations) {
+    double away = 0.0;
+    cuts.push_back(line.closestParam({station[0], station[1], station[2]}, away));
+  }
+  if (stationPieces.size() != cuts.size() + 1) return {};
+  for (std::size_t k = 0; k < cuts.size(); ++k)
+    if (cuts[k] < apart || cuts[k] > length - apart || (k > 0 && cuts[k] - cuts[k - 1] < apart))
+      return {};
+  // The anchors, stations among them where no anchor point is as close.
+  std::vector<CurveNode> ends;
+  for (const std::size_t i : anchors) ends.push_back({walk.arc[i], i});
+  for (const double cut : cuts)
+    if (std::none_of(ends.begin(), ends.end(),
+                     [&](const CurveNode& node) { return std::abs(node.param - cut) < apart; }))
+      ends.push_back({cut});
+  std::sort(ends.begin(), ends.end(),
+            [](const CurveNode& a, const CurveNode& b) { return a.param < b.param; });
+  const auto stretchOf = [&](double from) {
+    return std::size_t(std::upper_bound(cuts.begin(), cuts.end(), from + apart) - cuts.begin());
+  };
+  std::vector<std::vector<double>> lengths(stationPieces.size());
+  for (std::size_t k = 0; k + 1 < ends.size(); ++k)
+    lengths[stretchOf(ends[k].param)].push_back(ends[k + 1].param - ends[k].param);
+  std::vector<std::vector<long>> pieces(stationPieces.size());
+  for (std::size_t g = 0; g < lengths.size(); ++g) {
+    if (lengths[g].empty() || stationPieces[g] < long(lengths[g].size())) return {};
+    pieces[g] = spanPieces(lengths[g], stationPieces[g]);
+  }
+  const auto ratioAt = [&](const CurveNode& node) {
+    return node.point == SIZE_MAX ? 0.0 : grading[node.point];
+  };
+  std::vector<CurveNode> nodes;
+  std::vector<std::size_t> used(pieces.size(), 0);
+  for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
+    const std::size_t g = stretchOf(ends[k].param);
+    const long count = pieces[g][used[g]++];
+    const double from = ends[k].param, span = ends[k + 1].param - from;
+    const std::vector<double> weights = gradedPieces(count, ratioAt(ends[k]), ratioAt(ends[k + 1]));
+    double total = 0.0, reached = 0.0;
+    for (double weight : weights) total += weight;
+    nodes.push_back(ends[k]);
+    for (long j = 1; j < count; ++j) {
+      reached += weights[std::size_t(j - 1)];
+      nodes.push_back({from + span * reached / total});
+    }
+  }
+  nodes.push_back(ends.back());
+  return nodes;
+}
+
 /// The nodes of one curve in canonical order (closed: the first is not repeated).
 /// A curve that keeps its points (VolumeCurve::keepPoints), or, when not graded, whose points are
 /// already spaced as the sampling would space them (segmentsFitSpacing), has every point as a
@@ -192,10 +256,13 @@ std::vector<double> gradedPieces(long pieces, double startRatio, double endRatio
 /// node when it has that many segments and is not graded, else that many pieces in all, spread
 /// over its spans between anchors by their lengths, with no far points added (the count must
 /// hold). `grading`: per curve point, the ratio of the pieces shrinking toward it where it ends a
-/// span (gradedPieces), else 0.
+/// span (gradedPieces), else 0. An open curve with stations that fit it is cut as
+/// sampleWithStations cuts it.
 std::vector<CurveNode> sampleCurve(const Walk& walk, bool keepPoints, long count, double spacing,
                                    double tolerance, double sagittaShare,
-                                   const std::vector<double>& grading) {
+                                   const std::vector<double>& grading,
+                                   const std::vector<Point3>& stations,
+                                   const std::vector<long>& stationPieces) {
   const std::size_t n = walk.points.size();
   if (walk.closed) count = 0;
   const bool ownCount = count > 0;
@@ -213,6 +280,11 @@ std::vector<CurveNode> sampleCurve(const Walk& walk, bool keepPoints, long count
     if (end || ((walk.closed || (i > 0 && i + 1 < n)) &&
                 turns(walk.points, (i + n - 1) % n, i, (i + 1) % n)))
       anchors.push_back(i);
+  }
+  if (!walk.closed && !keepPoints && !stations.empty()) {
+    std::vector<CurveNode> nodes =
+        sampleWithStations(walk, anchors, stations, stationPieces, grading);
+    if (!nodes.empty()) return nodes;
   }
   if (anchors.empty()) anchors.push_back(0);
   if (walk.closed) anchors.push_back(anchors.front() + n);  // back to the first anchor
@@ -277,9 +349,16 @@ void JunctionNodes::add(const std::vector<VolumeCurve>& curves, double spacing, 
       const auto at = std::find(points.begin(), points.end(), point);
       if (at != points.end()) grading[std::size_t(at - points.begin())] = ratio;
     }
+    // Stations and their pieces in the canonical direction.
+    std::vector<Point3> stations = curve.stations;
+    std::vector<long> stationPieces = curve.stationPieces;
+    if (!curve.closed && points.front() != curve.points.front()) {
+      std::reverse(stations.begin(), stations.end());
+      std::reverse(stationPieces.begin(), stationPieces.end());
+    }
     const std::vector<CurveNode> nodes =
         sampleCurve(walk, curve.keepPoints, curve.nodeCount, own, tolerance * own / spacing,
-                    sagittaShare, grading);
+                    sagittaShare, grading, stations, stationPieces);
     const std::size_t segments = walk.arc.size() - 1;
     std::vector<JunctionEdgeNodes> perEdge(segments);
     for (std::size_t s = 0; s < segments; ++s) perEdge[s].from = walk.at(s);

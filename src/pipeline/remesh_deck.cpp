@@ -384,16 +384,6 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
   const std::vector<std::unordered_set<Id>> hardPoints = partHardPoints(deck, plans);
   std::unordered_map<Id, double> seamSpacing;
   pipeline::SeamSampling seamSampling;
-  const auto updateSpacing = [&] {
-    junctionSpacing = junctionSpacings(models, plans);
-    arena.execute([&] {
-      seamSpacing =
-          pipeline::seamNodeSpacing(models, plans, junctionSpacing, keptFromStart, settings);
-      seamSampling = pipeline::seamSampling(models, plans, junctionSpacing, keptFromStart,
-                                            seamSpacing, hardPoints, settings);
-    });
-  };
-  updateSpacing();
   // Parts whose seams keep their nodes: from the start those not planned (held shells too) and
   // those on solids, then every part kept in a round.
   std::vector<Id> fixed = unplannedParts(deck, plans);
@@ -405,6 +395,21 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
       todo.push_back(i);
   }
   std::sort(fixed.begin(), fixed.end());
+  const auto updateSampling = [&] {
+    arena.execute([&] {
+      seamSampling = pipeline::seamSampling(models, plans, junctionSpacing, keptFromStart,
+                                            seamSpacing, hardPoints, fixed, settings);
+    });
+  };
+  const auto updateSpacing = [&] {
+    junctionSpacing = junctionSpacings(models, plans);
+    arena.execute([&] {
+      seamSpacing =
+          pipeline::seamNodeSpacing(models, plans, junctionSpacing, keptFromStart, settings);
+    });
+    updateSampling();
+  };
+  updateSpacing();
   // Rounds: the parts to do are remeshed with the seams along fixed parts keeping their nodes (a
   // fixed part itself with all its seams fixed); the neighbours of a part kept in a round, and
   // that part, are done again in the next. After the first round, when parts were kept that
@@ -439,6 +444,7 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
     });
   };
   for (bool first = true; !todo.empty(); first = false) {
+    if (!first) updateSampling();  // the curves along the parts kept since keep their points
     remeshAll(todo, first, first);
     for (int level = 1; first && level <= settings.retries; ++level) {
       bool anyHalvable = false;

@@ -12,6 +12,7 @@
 
 #include "extract/mapped_patch.h"
 #include "extract/narrow_sheet.h"
+#include "extract/polyline_param.h"
 #include "extract/sheet_patches.h"
 #include "geometry/vec3.h"
 #include "pipeline/remesh_part.h"
@@ -36,13 +37,26 @@ struct TiedCurve {
   double length = 0.0;
 };
 
+/// A junction curve facing a side of several whole curves across a patch: the points of it
+/// closest to the joints between those curves (its stations, in its order from the point with
+/// node ID `firstNode`), and the curve across each stretch between them.
+struct StationTie {
+  NodeEdge curve;
+  Id firstNode = 0;
+  std::vector<std::array<double, 3>> stations;
+  std::vector<NodeEdge> across;  ///< stations.size() + 1 keys
+};
+
 /// What one part asks: pairs of sides facing each other across its narrow sheets' four-sided
-/// patches, and the pieces and length of each curve on such a side.
+/// patches, the pieces and length of each curve on such a side, and more.
 struct CurveTies {
   std::vector<std::pair<CurveSide, CurveSide>> pairs;
+  /// Four-sided patches: their sides in order round the loop (empty: not made of whole curves).
+  std::vector<std::array<CurveSide, 4>> patches;
   std::vector<std::pair<NodeEdge, TiedCurve>> curves;
   /// Sharp corners: the corner's node ID and the next one's along a side, wedgeRatio.
   std::vector<std::pair<NodeEdge, double>> graded;
+  std::vector<StationTie> stations;
 };
 
 /// The edge between two points of a sheet, by point index, lower first.
@@ -64,9 +78,57 @@ long sampledPieces(const Sheet& sheet, const Polyline& curve,
   return std::max(1L, nodes - 1);
 }
 
+/// Adds to `ties` the stations of curve `single` facing the whole curves `across` (in order along
+/// the side across, two or more): the points of `single` closest to the joints between them. None
+/// when the curves across do not face its stretches one by one in order.
+void addStations(const Sheet& sheet, const Polyline& single, const std::vector<std::size_t>& across,
+                 CurveTies& ties) {
+  std::vector<std::array<double, 3>> points;
+  for (const PointIndex p : single.points) points.push_back(sheet.points[p]);
+  const extract::PolylineParam line(points, false);
+  const auto paramOf = [&](const std::array<double, 3>& p) {
+    double away = 0.0;
+    return line.closestParam({p[0], p[1], p[2]}, away);
+  };
+  // Per curve across: the params of its two ends on `single`, ordered.
+  std::vector<std::pair<double, double>> spans;
+  for (const std::size_t c : across) {
+    const Polyline& curve = sheet.junctionCurves[c];
+    const double a = paramOf(sheet.points[curve.points.front()]);
+    const double b = paramOf(sheet.points[curve.points.back()]);
+    spans.emplace_back(std::min(a, b), std::max(a, b));
+  }
+  std::vector<std::size_t> order(across.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return spans[a].first < spans[b].first; });
+  StationTie tie{curveKey(sheet, single), sheet.pointNodeIds[single.points.front()], {}, {}};
+  const double apart = 1e-6 * line.length();
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const auto& [from, to] = spans[order[k]];
+    if (to - from < apart) return;
+    if (k > 0) {
+      const double joint = spans[order[k - 1]].second;
+      if (std::abs(from - joint) > apart) return;  // a gap or an overlap: not one by one
+      tie.stations.push_back(extract::toArray(line.pointAt(0.5 * (from + joint))));
+    }
+    tie.across.push_back(curveKey(sheet, sheet.junctionCurves[across[order[k]]]));
+  }
+  ties.stations.push_back(std::move(tie));
+}
+
+/// The length of a curve of the sheet.
+double curveLength(const Sheet& sheet, const Polyline& curve) {
+  double length = 0.0;
+  for (std::size_t i = 0; i + 1 < curve.points.size(); ++i)
+    length += distance(sheet.points[curve.points[i]], sheet.points[curve.points[i + 1]]);
+  return length;
+}
+
 /// Adds to `ties` the pairs of opposite sides of the sheet's four-sided one-loop patches where
 /// both sides are made of whole junction curves (a side with a free stretch adapts by itself; a
-/// side ending inside a curve is left alone).
+/// side ending inside a curve is left alone), the stations of a side of one curve facing a side
+/// of several (addStations), and the patch's sides (CurveTies::patches).
 void tieOppositeCurves(const Sheet& sheet, CurveTies& ties) {
   std::map<std::pair<PointIndex, PointIndex>, std::size_t> curveOfEdge;
   for (std::size_t c = 0; c < sheet.junctionCurves.size(); ++c) {
@@ -89,6 +151,7 @@ void tieOppositeCurves(const Sheet& sheet, CurveTies& ties) {
     const std::vector<std::size_t> corners = extract::loopCorners(loopPoints);
     if (corners.size() != 4) continue;
     std::array<std::optional<CurveSide>, 4> sides;
+    std::array<std::vector<std::size_t>, 4> sideCurves;  // curve indices, in loop order
     for (std::size_t k = 0; k < 4; ++k) {
       // The curves along the side, each with the segments the side runs along it.
       std::vector<std::pair<std::size_t, std::size_t>> run;  // (curve, segments)
@@ -108,10 +171,21 @@ void tieOppositeCurves(const Sheet& sheet, CurveTies& ties) {
         if (segments + 1 != sheet.junctionCurves[curve].points.size()) break;
         side.push_back(curveKey(sheet, sheet.junctionCurves[curve]));
       }
-      if (side.size() == run.size()) sides[k] = std::move(side);
+      if (side.size() != run.size()) continue;
+      sides[k] = std::move(side);
+      for (const auto& entry : run) sideCurves[k].push_back(entry.first);
     }
-    for (std::size_t k = 0; k < 2; ++k)
-      if (sides[k] && sides[k + 2]) ties.pairs.emplace_back(*sides[k], *sides[k + 2]);
+    std::array<CurveSide, 4> patchSides;
+    for (std::size_t k = 0; k < 4; ++k)
+      if (sides[k]) patchSides[k] = *sides[k];
+    ties.patches.push_back(std::move(patchSides));
+    for (std::size_t k = 0; k < 2; ++k) {
+      if (!sides[k] || !sides[k + 2]) continue;
+      ties.pairs.emplace_back(*sides[k], *sides[k + 2]);
+      const std::vector<std::size_t>&a = sideCurves[k], &b = sideCurves[k + 2];
+      if (a.size() == 1 && b.size() > 1) addStations(sheet, sheet.junctionCurves[a[0]], b, ties);
+      if (b.size() == 1 && a.size() > 1) addStations(sheet, sheet.junctionCurves[b[0]], a, ties);
+    }
   }
 }
 
@@ -145,7 +219,8 @@ void gradeSharpCorners(const Sheet& sheet, const QualitySettings& criteria,
 /// The ties of one part (see CurveTies); none when its sheets cannot be built.
 CurveTies partTies(const FeModel& model, const PartPlan& plan, double junctionSpacing,
                    const std::unordered_map<Id, double>& seamSpacing,
-                   const std::unordered_set<Id>& hardPoints, const RemeshSettings& settings) {
+                   const std::unordered_set<Id>& hardPoints, const std::vector<Id>& keptParts,
+                   const RemeshSettings& settings) {
   CurveTies ties;
   std::vector<Sheet> sheets;
   try {
@@ -155,6 +230,7 @@ CurveTies partTies(const FeModel& model, const PartPlan& plan, double junctionSp
   }
   placeHardPoints(sheets, hardPoints);
   setSeamSpacing(sheets, seamSpacing, junctionSpacing);
+  markKeptSeams(sheets, model, keptParts);
   const double spacing = extractJunctionSpacing(settings, junctionSpacing);
   for (const Sheet& sheet : sheets) {
     if (!(settings.narrowFeatureVoxels > 0 &&
@@ -167,11 +243,9 @@ CurveTies partTies(const FeModel& model, const PartPlan& plan, double junctionSp
     const extract::JunctionNodes junctions = sheetJunctionNodes(sheet, spacing);
     for (const Polyline& curve : sheet.junctionCurves) {
       if (curve.closed || curve.points.size() < 2) continue;
-      double length = 0.0;
-      for (std::size_t i = 0; i + 1 < curve.points.size(); ++i)
-        length += distance(sheet.points[curve.points[i]], sheet.points[curve.points[i + 1]]);
-      ties.curves.emplace_back(curveKey(sheet, curve),
-                               TiedCurve{sampledPieces(sheet, curve, junctions), length});
+      ties.curves.emplace_back(
+          curveKey(sheet, curve),
+          TiedCurve{sampledPieces(sheet, curve, junctions), curveLength(sheet, curve)});
     }
   }
   return ties;
@@ -201,12 +275,12 @@ SeamSampling seamSampling(const std::vector<FeModel>& models, const std::vector<
                           const std::vector<std::uint8_t>& skip,
                           const std::unordered_map<Id, double>& seamSpacing,
                           const std::vector<std::unordered_set<Id>>& hardPoints,
-                          const RemeshSettings& settings) {
+                          const std::vector<Id>& keptParts, const RemeshSettings& settings) {
   std::vector<CurveTies> perPlan(plans.size());
   tbb::parallel_for(std::size_t(0), plans.size(), [&](std::size_t i) {
-    if (!skip[i])
-      perPlan[i] =
-          partTies(models[i], plans[i], junctionSpacing[i], seamSpacing, hardPoints[i], settings);
+    if (!skip[i] && !std::binary_search(keptParts.begin(), keptParts.end(), plans[i].part))
+      perPlan[i] = partTies(models[i], plans[i], junctionSpacing[i], seamSpacing, hardPoints[i],
+                            keptParts, settings);
   });
   // Every tied curve, with the most pieces any part's sampling gives it.
   std::map<NodeEdge, TiedCurve> curves;
@@ -225,26 +299,57 @@ SeamSampling seamSampling(const std::vector<FeModel>& models, const std::vector<
     for (const NodeEdge& key : side) total += count.at(key);
     return total;
   };
+  const auto length = [&](const CurveSide& side) {
+    double total = 0.0;
+    for (const NodeEdge& key : side) total += curves.at(key).length;
+    return total;
+  };
+  // Adds `more` pieces to the side's curve with the longest pieces.
+  const auto raise = [&](const CurveSide& side, long more) {
+    const NodeEdge* longest = &side.front();
+    for (const NodeEdge& key : side)
+      if (curves.at(key).length / double(count.at(key)) >
+          curves.at(*longest).length / double(count.at(*longest)))
+        longest = &key;
+    count[*longest] += more;
+  };
   // Raises the side with fewer pieces to the other's count, on its curve with the longest
   // pieces, pass after pass (counts only grow) until every pair matches or kMatchingPasses.
-  for (int pass = 0; pass < kMatchingPasses; ++pass) {
-    bool changed = false;
-    for (const CurveTies& ties : perPlan)
-      for (const auto& [a, b] : ties.pairs) {
-        if (!known(a) || !known(b)) continue;
-        const long sa = sum(a), sb = sum(b);
-        if (sa == sb) continue;
-        const CurveSide& fewer = sa < sb ? a : b;
-        const NodeEdge* longest = &fewer.front();
-        for (const NodeEdge& key : fewer)
-          if (curves.at(key).length / double(count.at(key)) >
-              curves.at(*longest).length / double(count.at(*longest)))
-            longest = &key;
-        count[*longest] += std::abs(sa - sb);
-        changed = true;
+  const auto matchPairs = [&] {
+    for (int pass = 0; pass < kMatchingPasses; ++pass) {
+      bool changed = false;
+      for (const CurveTies& ties : perPlan)
+        for (const auto& [a, b] : ties.pairs) {
+          if (!known(a) || !known(b)) continue;
+          const long sa = sum(a), sb = sum(b);
+          if (sa == sb) continue;
+          raise(sa < sb ? a : b, std::abs(sa - sb));
+          changed = true;
+        }
+      if (!changed) break;
+    }
+  };
+  matchPairs();
+  // Then each side of a four-sided patch whose pieces are longer than the aspect limit times
+  // the pieces of a side across it that has two or more (a patch two elements across, where a
+  // web stands on the middle of its end) gets as many as that limit asks, by the counts matched
+  // so far (once: a raise does not raise others' bounds), and the pairs are matched again.
+  const double aspect = settings.optimizeSettings.quality.maxAspectRatio;
+  std::vector<std::pair<const CurveSide*, long>> aspectRaises;
+  for (const CurveTies& ties : perPlan)
+    for (const auto& patch : ties.patches)
+      for (std::size_t k = 0; k < 4; ++k) {
+        if (patch[k].empty() || !known(patch[k])) continue;
+        double across = HUGE_VAL;
+        for (const std::size_t j : {(k + 1) % 4, (k + 3) % 4})
+          if (!patch[j].empty() && known(patch[j]) && sum(patch[j]) > 1)
+            across = std::min(across, length(patch[j]) / double(sum(patch[j])));
+        if (!std::isfinite(across)) continue;
+        const long needed = long(std::ceil(length(patch[k]) / (aspect * across) - 1e-9));
+        if (needed > sum(patch[k])) aspectRaises.emplace_back(&patch[k], needed - sum(patch[k]));
       }
-    if (!changed) break;
-  }
+  for (const auto& [side, more] : aspectRaises) raise(*side, more);
+  if (!aspectRaises.empty()) matchPairs();
   SeamSampling sampling;
   for (const auto& [key, curve] : curves)
     if (count.at(key) > curve.pieces) sampling.counts[key] = count.at(key);
@@ -252,6 +357,21 @@ SeamSampling seamSampling(const std::vector<FeModel>& models, const std::vector<
     for (const auto& [side, ratio] : ties.graded) {
       const auto [it, added] = sampling.grading.emplace(side, ratio);
       if (!added) it->second = std::min(it->second, ratio);
+    }
+  // Stations: each stretch gets the count of the curve across it; the first tie of a curve whose
+  // counts add up to the curve's own stays.
+  for (const CurveTies& ties : perPlan)
+    for (const StationTie& tie : ties.stations) {
+      SeamStations stations{tie.firstNode, tie.stations, {}};
+      long total = 0;
+      for (const NodeEdge& key : tie.across) {
+        const auto it = count.find(key);
+        if (it == count.end()) break;
+        stations.pieces.push_back(it->second);
+        total += it->second;
+      }
+      if (stations.pieces.size() == tie.across.size() && total == count.at(tie.curve))
+        sampling.stations.emplace(tie.curve, std::move(stations));
     }
   return sampling;
 }
@@ -263,6 +383,19 @@ void setSeamSampling(std::vector<Sheet>& sheets, const SeamSampling& sampling) {
       if (!curve.closed) {
         const auto it = sampling.counts.find(curveKey(sheet, curve));
         if (it != sampling.counts.end()) curve.nodeCount = it->second;
+      }
+      curve.stations.clear();
+      curve.stationPieces.clear();
+      if (!curve.closed) {
+        const auto it = sampling.stations.find(curveKey(sheet, curve));
+        if (it != sampling.stations.end()) {
+          curve.stations = it->second.points;
+          curve.stationPieces = it->second.pieces;
+          if (sheet.pointNodeIds[curve.points.front()] != it->second.firstNode) {
+            std::reverse(curve.stations.begin(), curve.stations.end());
+            std::reverse(curve.stationPieces.begin(), curve.stationPieces.end());
+          }
+        }
       }
       curve.grading.clear();
       if (sampling.grading.empty()) continue;

@@ -10,8 +10,10 @@
 // that has them. Internal to src/pipeline.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -38,6 +40,14 @@ using SeamCounts = std::unordered_map<NodeEdge, long, NodeEdgeHash>;
 /// Precondition: the curve has at least two points.
 NodeEdge curveKey(const Sheet& sheet, const Polyline& curve);
 
+/// Where a junction curve's nodes must stand (Polyline::stations): the points, in the curve's
+/// order from its point with node ID `firstNode`, and the pieces of each stretch between them.
+struct SeamStations {
+  Id firstNode = 0;
+  std::vector<std::array<double, 3>> points;
+  std::vector<long> pieces;  ///< points.size() + 1 entries
+};
+
 /// How the deck's junction curves are sampled beyond their spacing.
 struct SeamSampling {
   /// Per curve that must get more pieces than its spacing gives it, that count (see the top of
@@ -48,6 +58,10 @@ struct SeamSampling {
   /// on the junction curve running along that side (wedgeRatio; the smallest any sheet asks).
   /// Curves that only end there (along another sheet's side) keep even pieces.
   std::unordered_map<NodeEdge, double, NodeEdgeHash> grading;
+  /// Per curve facing a side of several whole curves across a narrow sheet's four-sided patch,
+  /// the points of it closest to their joints and the count of the curve across each stretch,
+  /// so that its nodes line up with theirs instead of spreading evenly over it.
+  std::map<NodeEdge, SeamStations> stations;
 };
 
 /// The growth ratio of the pieces of a junction curve toward a corner of `cornerDeg` degrees
@@ -67,6 +81,9 @@ double wedgeRatio(double cornerDeg, const QualitySettings& criteria);
 /// @param seamSpacing     seamNodeSpacing of the same plans
 /// @param hardPoints      per plan, the part's hard points (its curves are cut there, as
 ///                        placeHardPoints cuts them in the part's remesh)
+/// @param keptParts       parts that keep their elements (ascending IDs): not sampled, and the
+///                        curves along them keep their points (markKeptSeams), as in the
+///                        remesh of their neighbours
 /// A part whose sheets cannot be built adds nothing. Deterministic: the result does not depend
 /// on the order or thread count.
 SeamSampling seamSampling(const std::vector<FeModel>& models, const std::vector<PartPlan>& plans,
@@ -74,10 +91,10 @@ SeamSampling seamSampling(const std::vector<FeModel>& models, const std::vector<
                           const std::vector<std::uint8_t>& skip,
                           const std::unordered_map<Id, double>& seamSpacing,
                           const std::vector<std::unordered_set<Id>>& hardPoints,
-                          const RemeshSettings& settings);
+                          const std::vector<Id>& keptParts, const RemeshSettings& settings);
 
-/// Sets Polyline::nodeCount of the open junction curves of `sheets` that `sampling` counts, and
-/// Polyline::grading at the curve points it grades.
+/// Sets Polyline::nodeCount of the open junction curves of `sheets` that `sampling` counts, their
+/// Polyline::stations, and Polyline::grading at the curve points it grades.
 void setSeamSampling(std::vector<Sheet>& sheets, const SeamSampling& sampling);
 
 }  // namespace voxremesh::pipeline

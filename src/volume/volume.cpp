@@ -86,6 +86,8 @@ VolumeCurve worldCurve(const Sheet& sheet, const Polyline& line) {
   }
   for (const auto& [index, ratio] : line.grading)
     curve.grading.emplace_back(curve.points.at(index), ratio);
+  curve.stations = line.stations;
+  curve.stationPieces = line.stationPieces;
   return curve;
 }
 
