@@ -705,6 +705,20 @@ TEST(Pipeline, ASmallerSizeOnOnePartReachesItsNeighboursSeamsOnly) {
   EXPECT_EQ(seam[4].size(), 7u);  // 24 / 4 + 1
 }
 
+/// A real deck remeshed at `size` with the default settings.
+RemeshReport remeshDeckAt(const std::string& path, double size) {
+  FeModel model = readDeck(path);
+  RemeshSettings settings;
+  settings.targetSize = size;
+  return remeshDeck(model, settings);
+}
+
+/// Every pair of parts that shared nodes in the input still does in the report's output.
+void expectSeamsStillShared(const RemeshReport& report) {
+  for (const auto& [pair, before] : report.seamsBefore.sharedNodes)
+    EXPECT_GT(report.seamsAfter.sharedNodes.count(pair), 0u) << pair.first << "-" << pair.second;
+}
+
 TEST(Pipeline, APartThatFailsAtItsSizeIsTriedAtHalfWithItsNeighboursSeams) {
   // car5.k at twice its size: part 4, a 393 mm wide plate, holds a hard point 131 mm from its
   // edge, which its one row of elements 307 mm long cannot hold; its retries at a finer voxel
@@ -712,10 +726,7 @@ TEST(Pipeline, APartThatFailsAtItsSizeIsTriedAtHalfWithItsNeighboursSeams) {
   // it then get nodes 154 mm apart, it passes, and so do parts 1 and 2, which were kept with it
   // (part 6, the pole, stays kept: it loses 2.6 % of its area even at half the size).
   VOXREMESH_REQUIRE_SHARED_DECK(path, "car5.k");
-  FeModel model = readDeck(path);
-  RemeshSettings settings;
-  settings.targetSize = 307.18;
-  const RemeshReport report = remeshDeck(model, settings);
+  const RemeshReport report = remeshDeckAt(path.string(), 307.18);
   ASSERT_EQ(report.parts.size(), 6u);
   for (const RemeshedPart& part : report.parts) {
     if (part.plan.part == 6) continue;
@@ -726,8 +737,7 @@ TEST(Pipeline, APartThatFailsAtItsSizeIsTriedAtHalfWithItsNeighboursSeams) {
   EXPECT_EQ(plate.status, PartStatus::Retried);
   EXPECT_NEAR(plate.plan.targetSize, 153.59, 0.01);
   EXPECT_TRUE(test::contains(plate.reason, "at half the size")) << plate.reason;
-  for (const auto& [pair, before] : report.seamsBefore.sharedNodes)
-    EXPECT_GT(report.seamsAfter.sharedNodes.count(pair), 0u) << pair.first << "-" << pair.second;
+  expectSeamsStillShared(report);
 }
 
 TEST(Pipeline, APartStillKeptAtHalfItsSizeIsTriedAtAQuarterWithItsNeighbours) {
@@ -736,10 +746,7 @@ TEST(Pipeline, APartStillKeptAtHalfItsSizeIsTriedAtAQuarterWithItsNeighbours) {
   // at 1 with them (as it does at the deck's own size halved). No part is then kept, and every
   // pair of parts that shared nodes still does.
   VOXREMESH_REQUIRE_SHARED_DECK(path, "ISat_Launch_Sm_Rgd.dat");
-  FeModel model = readDeck(path);
-  RemeshSettings settings;
-  settings.targetSize = 4.0;
-  const RemeshReport report = remeshDeck(model, settings);
+  const RemeshReport report = remeshDeckAt(path.string(), 4.0);
   ASSERT_EQ(report.parts.size(), 8u);
   for (const RemeshedPart& part : report.parts)
     EXPECT_NE(part.status, PartStatus::Kept) << part.plan.part << ": " << part.reason;
@@ -749,8 +756,7 @@ TEST(Pipeline, APartStillKeptAtHalfItsSizeIsTriedAtAQuarterWithItsNeighbours) {
   EXPECT_NEAR(frame.plan.targetSize, 1.0, 1e-12);
   EXPECT_TRUE(test::contains(frame.reason, "at 1/4 of the size")) << frame.reason;
   EXPECT_TRUE(test::contains(frame.reason, "at the full size: ")) << frame.reason;
-  for (const auto& [pair, before] : report.seamsBefore.sharedNodes)
-    EXPECT_GT(report.seamsAfter.sharedNodes.count(pair), 0u) << pair.first << "-" << pair.second;
+  expectSeamsStillShared(report);
 }
 
 /// A 60 x 60 plate of 3-unit quads in z = 0 (part 1) with a stiffener 9 tall of 3-unit quads
