@@ -395,19 +395,16 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
       todo.push_back(i);
   }
   std::sort(fixed.begin(), fixed.end());
-  const auto updateSampling = [&] {
-    arena.execute([&] {
-      seamSampling = pipeline::seamSampling(models, plans, junctionSpacing, keptFromStart,
-                                            seamSpacing, hardPoints, fixed, settings);
-    });
-  };
+  // The seams' spacing and sampling, for the first round and the halving passes. Later rounds
+  // keep them: a part redone there meets parts that are not, whose seams must stay as they are.
   const auto updateSpacing = [&] {
     junctionSpacing = junctionSpacings(models, plans);
     arena.execute([&] {
       seamSpacing =
           pipeline::seamNodeSpacing(models, plans, junctionSpacing, keptFromStart, settings);
+      seamSampling = pipeline::seamSampling(models, plans, junctionSpacing, keptFromStart,
+                                            seamSpacing, hardPoints, fixed, settings);
     });
-    updateSampling();
   };
   updateSpacing();
   // Rounds: the parts to do are remeshed with the seams along fixed parts keeping their nodes (a
@@ -444,7 +441,6 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
     });
   };
   for (bool first = true; !todo.empty(); first = false) {
-    if (!first) updateSampling();  // the curves along the parts kept since keep their points
     remeshAll(todo, first, first);
     for (int level = 1; first && level <= settings.retries; ++level) {
       bool anyHalvable = false;
