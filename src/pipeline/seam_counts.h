@@ -5,9 +5,12 @@
 // triangles where the counts differ. Curves are tied through every patch that has them on
 // opposite sides, over the whole deck (the parts on both sides of a seam see the same curve): a
 // side may be several curves, and the side with fewer pieces gets more on its curve with the
-// longest pieces until both match. And where a narrow sheet narrows into a sharp corner, the
-// junction curves ending there get pieces shrinking toward it (junction_nodes.h), on every part
-// that has them. Internal to src/pipeline.
+// longest pieces until both match. A single curve facing several across a patch gets stations,
+// nodes facing their joints, each stretch with the count of the curve across. A side whose
+// pieces are longer than the aspect limit times the pieces across it (two or more across) gets
+// that many more, once, from the matched counts. And where a narrow sheet narrows into a sharp
+// corner, the junction curves along the two sides of that wedge get pieces shrinking toward it
+// (junction_nodes.h), on every part that has them. Internal to src/pipeline.
 #pragma once
 
 #include <array>
