@@ -1,6 +1,7 @@
 // The pipeline's planning stage and the progress line.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -626,9 +627,36 @@ TEST(Pipeline, ATubeWithItsSeamRowOfNodesDoubledIsRemeshedClosed) {
   EXPECT_EQ(topologyCounts(quadMeshFromModel(model, 1)).boundaryLoops, 2u);
 }
 
+/// Adds to `part` a Moebius band of 12 quads (a sheet no orientation fits), 2 wide round a circle
+/// of radius 4 about (30, 30, 5), away from everything else: nodes from `firstNode`, shells from
+/// `firstShell`.
+void addMoebiusBand(FeModel& model, Id part, Id firstNode, Id firstShell) {
+  constexpr int kQuads = 12;
+  const double pi = std::acos(-1.0);
+  for (int k = 0; k < kQuads; ++k) {
+    const double t = 2.0 * pi * k / kQuads;
+    const double radial[3] = {std::cos(t), std::sin(t), 0.0};
+    const double across[3] = {std::cos(t / 2) * radial[0], std::cos(t / 2) * radial[1],
+                              std::sin(t / 2)};
+    for (int side = 0; side < 2; ++side) {
+      const double s = side == 0 ? -1.0 : 1.0;
+      test::addNode(model, firstNode + 2 * k + side, 30.0 + 4.0 * radial[0] + s * across[0],
+                    30.0 + 4.0 * radial[1] + s * across[1], 5.0 + s * across[2]);
+    }
+  }
+  for (int k = 0; k < kQuads; ++k) {
+    const Id a = firstNode + 2 * k, b = a + 1;
+    if (k + 1 < kQuads)
+      test::addShell(model, firstShell + k, part, {a, a + 2, b + 2, b});
+    else  // the half twist: the first pair of nodes comes back the other way round
+      test::addShell(model, firstShell + k, part, {a, firstNode + 1, firstNode, b});
+  }
+}
+
 TEST(Pipeline, APartLostToAKeptNeighbourSaysItsFirstMeshPassed) {
   // A 12 x 12 plate (part 1) of 0.25 x 1 quads with a flange 1 tall (part 2) on its edge y = 0,
-  // sharing its 49 nodes there; the flange has a duplicate shell and is kept. At size 4 the plate
+  // sharing its 49 nodes there; the flange's part also holds a Moebius band, cannot be oriented
+  // and is kept. At size 4 the plate
   // passes its first round (the seam gets the flange's spacing); done again with the flange's
   // 49 nodes on the seam, its elements there fail, and its reason says what happened. With the
   // default two retries its finer attempts hold the flange's nodes; with one they do not.
@@ -646,7 +674,7 @@ TEST(Pipeline, APartLostToAKeptNeighbourSaysItsFirstMeshPassed) {
   for (int i = 0; i < 48; ++i)
     test::addShell(model, shell++, 2,
                    {plateNode(i + 1, 0), plateNode(i, 0), Id(1000 + i), Id(1001 + i)});
-  test::addShell(model, shell++, 2, {plateNode(1, 0), plateNode(0, 0), Id(1000), Id(1001)});
+  addMoebiusBand(model, 2, 2000, shell);
   RemeshSettings settings;
   settings.targetSize = 4.0;
   const RemeshReport byDefault = remeshDeck(model, settings);
@@ -656,6 +684,8 @@ TEST(Pipeline, APartLostToAKeptNeighbourSaysItsFirstMeshPassed) {
   const RemeshReport report = remeshDeck(model, settings);
   ASSERT_EQ(report.parts.size(), 2u);
   EXPECT_EQ(report.parts[1].status, PartStatus::Kept);
+  EXPECT_TRUE(test::contains(report.parts[1].reason, "cannot be oriented consistently"))
+      << report.parts[1].reason;
   const RemeshedPart& plate = report.parts[0];
   ASSERT_EQ(plate.status, PartStatus::Kept) << plate.reason;
   EXPECT_TRUE(test::contains(plate.reason,
@@ -1015,17 +1045,40 @@ TEST(Pipeline, ShellsOnASolidStayAndTheRestOfTheirPartIsRemeshedAroundThem) {
   EXPECT_EQ(parts, std::set<Id>{1}) << "no held part ID is left in the deck";
 }
 
-TEST(Pipeline, APartWithADuplicateElementIsKeptNamingBothShells) {
+TEST(Pipeline, ADuplicateElementStaysAndTheRestOfItsPartIsRemeshedAroundIt) {
+  // Shell 9999 is the wall's shell 101 again, turned (as a model mirrored onto itself has on its
+  // plane of symmetry): both stay as they are, and the rest of the wall is remeshed around them.
   FeModel model = plateAndWall();
-  test::addShell(model, 9999, 2, {22, 1007, 1001, 11});  // shell 101 again, turned
+  test::addShell(model, 9999, 2, {22, 1007, 1001, 11});
   RemeshSettings settings;
   settings.targetSize = 7.0;
   const RemeshReport report = remeshDeck(model, settings);
   ASSERT_EQ(report.parts.size(), 2u);
-  EXPECT_EQ(report.parts[1].status, PartStatus::Kept);
-  EXPECT_NE(report.parts[1].reason.find("shells 101 and 9999 use the same nodes"),
+  const RemeshedPart& wall = report.parts[1];
+  ASSERT_NE(wall.status, PartStatus::Kept) << wall.reason;
+  EXPECT_NE(wall.reason.find("2 of its 51 shells are duplicate elements (shells 101 and 9999 use "
+                             "the same nodes) and are kept"),
             std::string::npos)
-      << report.parts[1].reason;
+      << wall.reason;
+  std::map<Id, const Shell*> byId;
+  std::size_t wallShellsOnTheCopiesNodes = 0;
+  for (const Shell& shell : model.shells) {
+    byId[shell.id] = &shell;
+    if (shell.id == 101 || shell.id == 9999 || shell.part != 2) continue;
+    for (int c = 0; c < shell.nodeCount; ++c) {
+      const Id node = shell.nodes[std::size_t(c)];
+      wallShellsOnTheCopiesNodes += node == 22 || node == 1007;
+    }
+  }
+  ASSERT_TRUE(byId.count(101) && byId.count(9999));
+  EXPECT_EQ(byId[101]->nodes, (std::array<Id, 4>{11, 22, 1007, 1001}));
+  EXPECT_EQ(byId[9999]->nodes, (std::array<Id, 4>{22, 1007, 1001, 11}));
+  EXPECT_EQ(byId[101]->part, 2);
+  EXPECT_EQ(byId[9999]->part, 2);
+  EXPECT_GE(wallShellsOnTheCopiesNodes, 2u) << "the rest of the wall shares their sides' nodes";
+  std::set<Id> parts;
+  for (const Shell& shell : model.shells) parts.insert(shell.part);
+  EXPECT_EQ(parts, (std::set<Id>{1, 2})) << "no held part ID is left in the deck";
 }
 
 }  // namespace

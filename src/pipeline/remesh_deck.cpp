@@ -3,6 +3,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -137,6 +138,45 @@ std::vector<std::vector<std::size_t>> shellsOnSolids(const FeModel& deck,
     if (onSolid) onSolids[it->second].push_back(s);
   }
   return onSolids;
+}
+
+/// Per plan, the indices (into deck.shells) of the part's shells that use the same nodes as another
+/// shell of the part (a duplicate element, every copy), ascending; `named` receives per plan the
+/// first such pairs in words ("shells 3 and 9"), empty when there is none.
+std::vector<std::vector<std::size_t>> duplicateShells(const FeModel& deck,
+                                                      const std::vector<PartPlan>& plans,
+                                                      std::vector<std::string>& named) {
+  const std::unordered_map<Id, std::size_t> planOf = planIndex(plans);
+  // (plan, sorted node IDs) -> the shells using exactly those nodes
+  std::map<std::pair<std::size_t, std::array<Id, 4>>, std::vector<std::size_t>> copies;
+  for (std::size_t s = 0; s < deck.shells.size(); ++s) {
+    const Shell& shell = deck.shells[s];
+    const auto it = planOf.find(shell.part);
+    if (it == planOf.end()) continue;
+    std::array<Id, 4> key{0, 0, 0, 0};
+    std::copy(shell.nodes.begin(), shell.nodes.begin() + shell.nodeCount, key.begin());
+    std::sort(key.begin(), key.end());
+    copies[{it->second, key}].push_back(s);
+  }
+  constexpr std::size_t kNamedPairs = 3;
+  std::vector<std::vector<std::size_t>> result(plans.size());
+  std::vector<std::size_t> pairs(plans.size(), 0);
+  named.assign(plans.size(), std::string());
+  for (const auto& [key, shells] : copies) {
+    if (shells.size() < 2) continue;
+    const std::size_t plan = key.first;
+    result[plan].insert(result[plan].end(), shells.begin(), shells.end());
+    if (pairs[plan]++ < kNamedPairs)
+      named[plan] += (named[plan].empty() ? "shells " : ", shells ") +
+                     std::to_string(deck.shells[shells[0]].id) + " and " +
+                     std::to_string(deck.shells[shells[1]].id);
+  }
+  for (std::size_t i = 0; i < plans.size(); ++i) {
+    std::sort(result[i].begin(), result[i].end());
+    if (pairs[i] > kNamedPairs)
+      named[i] += " and " + std::to_string(pairs[i] - kNamedPairs) + " more";
+  }
+  return result;
 }
 
 /// Shells of remeshed parts that stay as they are: while the deck is remeshed they carry a part
@@ -359,20 +399,37 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
   // Shells on faces of solid elements stay: a part made of them only is kept, the shells of a
   // part with others are held (a kept neighbour of the rest of their part).
   report.seamsBefore = deckSeams(deck);
+  // Duplicate elements (two shells of a part on the same nodes: a mirrored model's shells on its
+  // plane of symmetry, say) stay too: remeshing would merge them into one and lose the stiffness
+  // and the IDs the user gave them.
   const std::vector<std::vector<std::size_t>> onSolids = shellsOnSolids(deck, plans);
+  std::vector<std::string> duplicatePairs;
+  const std::vector<std::vector<std::size_t>> duplicates =
+      duplicateShells(deck, plans, duplicatePairs);
   HeldShells held(deck);
   std::vector<std::uint8_t> keptFromStart(plans.size(), 0);
   for (std::size_t i = 0; i < plans.size(); ++i) {
-    if (onSolids[i].empty()) continue;
-    if (onSolids[i].size() < plans[i].shells) {
-      held.hold(plans[i], onSolids[i]);
+    std::vector<std::size_t> staying = onSolids[i];
+    staying.insert(staying.end(), duplicates[i].begin(), duplicates[i].end());
+    std::sort(staying.begin(), staying.end());
+    staying.erase(std::unique(staying.begin(), staying.end()), staying.end());
+    if (staying.empty()) continue;
+    if (staying.size() < plans[i].shells) {
+      held.hold(plans[i], staying);
       continue;
     }
     keptFromStart[i] = 1;
     RemeshedPart& part = report.parts[i];
     part.plan = plans[i];
-    part.reason = "its " + std::to_string(plans[i].shells) +
-                  " shells lie on faces of solid elements (remeshing would detach them)";
+    const std::string shells = "its " + std::to_string(plans[i].shells) + " shells";
+    if (duplicates[i].empty())
+      part.reason = shells + " lie on faces of solid elements (remeshing would detach them)";
+    else if (onSolids[i].empty())
+      part.reason =
+          shells + " are duplicate elements (" + duplicatePairs[i] + " use the same nodes)";
+    else
+      part.reason = shells + " lie on faces of solid elements or are duplicate elements (" +
+                    duplicatePairs[i] + " use the same nodes)";
     tell("extract", plans[i].part, true);
   }
   std::vector<std::size_t> mergedNodes;
@@ -517,11 +574,16 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
                " coincident nodes of the part merged (remeshed as one surface)";
   }
   for (std::size_t i = 0; i < plans.size(); ++i) {
-    if (keptFromStart[i] || onSolids[i].empty()) continue;
+    if (keptFromStart[i]) continue;
     std::string& reason = report.parts[i].reason;
-    reason = std::to_string(onSolids[i].size()) + " of its " + std::to_string(plans[i].shells) +
-             " shells lie on faces of solid elements and are kept" +
-             (reason.empty() ? "" : "; " + reason);
+    if (!duplicates[i].empty())
+      reason = std::to_string(duplicates[i].size()) + " of its " + std::to_string(plans[i].shells) +
+               " shells are duplicate elements (" + duplicatePairs[i] +
+               " use the same nodes) and are kept" + (reason.empty() ? "" : "; " + reason);
+    if (!onSolids[i].empty())
+      reason = std::to_string(onSolids[i].size()) + " of its " + std::to_string(plans[i].shells) +
+               " shells lie on faces of solid elements and are kept" +
+               (reason.empty() ? "" : "; " + reason);
   }
   report.seamsAfter = deckSeams(deck);
   report.assemblySeconds = since(assemblyStart);

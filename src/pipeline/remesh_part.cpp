@@ -242,25 +242,6 @@ QuadMesh meshSheets(const std::vector<Sheet>& sheets, const std::vector<SheetPla
   return mesh;
 }
 
-/// Why the part cannot be remeshed as one surface when two of its shells use the same nodes (a
-/// duplicate element, its surface counted twice), naming the first such pair; else empty.
-std::string duplicateShells(const FeModel& model, Id part) {
-  std::vector<std::pair<std::array<Id, 4>, Id>> keys;  // (sorted node IDs, shell ID)
-  for (const Shell& shell : model.shells) {
-    if (shell.part != part) continue;
-    std::array<Id, 4> key{0, 0, 0, 0};
-    std::copy(shell.nodes.begin(), shell.nodes.begin() + shell.nodeCount, key.begin());
-    std::sort(key.begin(), key.end());
-    keys.emplace_back(key, shell.id);
-  }
-  std::sort(keys.begin(), keys.end());
-  for (std::size_t i = 1; i < keys.size(); ++i)
-    if (keys[i].first == keys[i - 1].first)
-      return "shells " + std::to_string(keys[i - 1].second) + " and " +
-             std::to_string(keys[i].second) + " use the same nodes (a duplicate element)";
-  return {};
-}
-
 /// The nodes the junction curves of `sheets` prescribe at `spacing` (as extraction places them),
 /// each once: the seams of the part's mesh with its other sheets and parts.
 std::vector<Point3> junctionNodePositions(const std::vector<Sheet>& sheets, double spacing) {
@@ -474,8 +455,6 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
   part.plan = plan;
   part.status = PartStatus::Kept;
   mesh = QuadMesh{};
-  part.reason = duplicateShells(model, plan.part);
-  if (!part.reason.empty()) return part;
   std::vector<Sheet> sheets;
   try {
     sheets = buildSheets(model, plan.part, settings.sheets);

@@ -141,7 +141,8 @@ std::size_t missingPoints(const QuadMesh& mesh, const std::vector<Point3>& point
 /// at half the voxel of the one before (never below settings.finestVoxelShare x target size),
 /// until a mesh passes acceptPartMesh. Never throws for the part's own failures: they end as
 /// status Kept with the reason (std::bad_alloc and a refused memory budget end the attempts).
-/// @param model            the part's shells and the shells sharing nodes with them
+/// @param model            the part's shells and the shells sharing nodes with them; no two
+///                         shells of the part on the same nodes (remeshDeck holds duplicates)
 /// @param plan             the part
 /// @param surroundings     junction spacing, kept neighbours and hard points
 /// @param mesh             receives the accepted mesh (cleared when the part is kept)
