@@ -829,6 +829,7 @@ TEST(Pipeline, AStiffenerOnALineInsideAPlateKeepsItsSeam) {
   ASSERT_EQ(after.sharedNodes.count({1, 2}), 1u);
   EXPECT_EQ(after.sharedNodes.at({1, 2}), 11u);
   EXPECT_EQ(after.tJunctionEdges, 10u);
+  EXPECT_EQ(after.hangingNodes, 0u) << "no node of one inside an edge of the other";
   for (const RemeshedPart& part : report.parts) {
     EXPECT_NE(part.status, PartStatus::Kept) << part.plan.part << ": " << part.reason;
   }
@@ -875,6 +876,28 @@ TEST(Pipeline, DeckSeamsCountSharedNodesPerPartPairAndTJunctionEdges) {
   EXPECT_EQ(seams.sharedNodes.at({1, 3}), 2u);
   EXPECT_EQ(seams.sharedNodes.at({2, 3}), 2u);
   EXPECT_EQ(seams.tJunctionEdges, 1u);
+}
+
+TEST(Pipeline, DeckSeamsCountNodesInsideTheEdgesOfPartsTheyShareASeamWith) {
+  // A fin of part 3 hangs down from the seam's first edge (nodes 11 and 22) with a node of its
+  // own in the middle of that edge: it lies inside an edge of the plate and of the wall.
+  FeModel model = plateAndWall();
+  EXPECT_EQ(deckSeams(model).hangingNodes, 0u);
+  test::addNode(model, 5000, 40.31, 0.17, -4.0);
+  test::addNode(model, 5001, 40.31, 2.17, -4.0);
+  test::addNode(model, 5002, 40.31, 4.17, -4.0);
+  test::addNode(model, 5003, 40.31, 2.17, 0.23);
+  test::addShell(model, 7000, 3, {11, 5003, 5001, 5000});
+  test::addShell(model, 7001, 3, {5003, 22, 5002, 5001});
+  EXPECT_EQ(deckSeams(model).hangingNodes, 2u);
+  // A fin whose nodes all lie inside that edge but which shares no node: no seam, none counted.
+  FeModel touching = plateAndWall();
+  test::addNode(touching, 5000, 40.31, 1.17, 0.23);
+  test::addNode(touching, 5001, 40.31, 2.17, 0.23);
+  test::addNode(touching, 5002, 40.31, 2.17, -4.0);
+  test::addNode(touching, 5003, 40.31, 1.17, -4.0);
+  test::addShell(touching, 7000, 3, {5000, 5001, 5002, 5003});
+  EXPECT_EQ(deckSeams(touching).hangingNodes, 0u);
 }
 
 TEST(Pipeline, APartNotRemeshedKeepsEveryNodeOfItsSeam) {

@@ -12,7 +12,8 @@
 //
 // Prints one table row per run: deck, size, exit code, parts, parts remeshed / retried / kept,
 // failing share, worst distance / target size, folded elements and 180-degree quad corners (these
-// four over the remeshed and retried parts), seconds and peak MB; then a line of totals. Writes
+// four over the remeshed and retried parts), nodes inside an edge of a part they share a seam
+// with (input -> output, over the deck), seconds and peak MB; then a line of totals. Writes
 // the same to --json (default bench_corpus.json) as an array of runs, each with the per-part list
 // of the CLI's report, for comparisons between versions. The kernel carries a parent's peak memory
 // over fork and exec into the child's, so this program keeps its own small (decks are read in
@@ -95,6 +96,8 @@ struct Run {
   fs::path folder;      ///< the run's temporary folder
   std::size_t parts = 0, remeshed = 0, retried = 0, kept = 0;
   std::size_t elements = 0, failing = 0, folded = 0, degenerate = 0;  ///< remeshed + retried
+  /// Nodes inside an edge of a part they share a seam with, in the input and the output.
+  std::size_t hangingIn = 0, hangingOut = 0;
   double worstDistance = 0.0;  ///< max distance / target size over remeshed and retried parts
   std::vector<Json> partList;  ///< the "parts" array of the CLI's report
 };
@@ -389,6 +392,8 @@ void readReport(Run& run) {
     const Json& parts = report["parts"];
     for (const Json& part : parts.items) addPart(part, run);
     run.partList = parts.items;
+    run.hangingIn = count(report, "hanging_nodes_in");
+    run.hangingOut = count(report, "hanging_nodes_out");
   } catch (const std::exception& e) {
     run.note = std::string("report not readable: ") + e.what();
   }
@@ -441,9 +446,9 @@ std::string rcColumn(const Run& run) {
 
 /// The table's header line.
 void printHeader(std::size_t deckWidth) {
-  std::printf("%-*s %12s %4s %5s %8s %7s %5s %8s %9s %6s %6s %8s %8s\n",
+  std::printf("%-*s %12s %4s %5s %8s %7s %5s %8s %9s %6s %6s %8s %8s %8s\n",
               static_cast<int>(deckWidth), "deck", "size", "rc", "parts", "remeshed", "retried",
-              "kept", "failing", "dist/size", "folded", "180deg", "seconds", "peak MB");
+              "kept", "failing", "dist/size", "folded", "180deg", "hanging", "seconds", "peak MB");
 }
 
 /// One table row for the run (and with --timeout-note, its note below it when it failed).
@@ -462,10 +467,12 @@ void printRow(const Run& run, std::size_t deckWidth, bool timeoutNote) {
                       : 0.0);
     std::snprintf(distance, sizeof distance, "%.3f", run.worstDistance);
   }
-  std::printf("%-*s %12s %4s %5zu %8zu %7zu %5zu %8s %9s %6zu %6zu %8.1f %8.0f\n",
+  char hanging[48];  // in the input -> in the output
+  std::snprintf(hanging, sizeof hanging, "%zu->%zu", run.hangingIn, run.hangingOut);
+  std::printf("%-*s %12s %4s %5zu %8zu %7zu %5zu %8s %9s %6zu %6zu %8s %8.1f %8.0f\n",
               static_cast<int>(deckWidth), run.deck.c_str(), size, rcColumn(run).c_str(), run.parts,
               run.remeshed, run.retried, run.kept, failing, distance, run.folded, run.degenerate,
-              run.end.seconds, run.end.peakMb);
+              hanging, run.end.seconds, run.end.peakMb);
   const bool failed = run.outcome != "ok" && run.outcome != "kept";
   if (failed && (timeoutNote || run.outcome == "skipped")) {
     const std::string where =
@@ -569,6 +576,8 @@ void appendRun(std::string& out, const Run& run) {
   field("worst_distance_per_size"), appendNumber(out, run.worstDistance);
   field("folded"), out += std::to_string(run.folded);
   field("degenerate_corners"), out += std::to_string(run.degenerate);
+  field("hanging_nodes_in"), out += std::to_string(run.hangingIn);
+  field("hanging_nodes_out"), out += std::to_string(run.hangingOut);
   field("seconds"), appendNumber(out, run.end.seconds);
   field("peak_mb"), appendNumber(out, run.end.peakMb);
   field("note"), voxremesh::json::appendJsonString(out, run.note);

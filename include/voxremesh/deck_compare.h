@@ -85,6 +85,7 @@ struct DeckComparison {
   std::vector<PartComparison> parts;  ///< ascending part ID
   std::vector<SeamComparison> seams;  ///< ascending pair
   std::size_t tJunctionEdgesBefore = 0, tJunctionEdgesAfter = 0;
+  std::size_t hangingNodesBefore = 0, hangingNodesAfter = 0;  ///< DeckSeams::hangingNodes
   std::size_t hardPoints = 0, hardPointsMissing = 0, hardPointsMoved = 0;
   double largestHardPointMove = 0.0;
   std::vector<SetComparison> sets;

@@ -191,11 +191,15 @@ struct RemeshedPart {
 };
 
 /// What remeshDeck did.
-/// The seams of a deck: per pair of parts whose shells share nodes, how many; and the edges that
-/// three or more shells share (T-junctions).
+/// The seams of a deck: per pair of parts whose shells share nodes, how many; the edges that
+/// three or more shells share (T-junctions); and the nodes that hang on a seam.
 struct DeckSeams {
   std::map<std::pair<Id, Id>, std::size_t> sharedNodes;  ///< key: (lower, higher) part ID
   std::size_t tJunctionEdges = 0;
+  /// Nodes of a part lying inside an edge of another part it shares nodes with (within 0.005 of
+  /// the shorter of the two parts' median edges, not at the edge's ends): one side of the seam
+  /// has a node the other lacks. Counted once per node and pair of parts.
+  std::size_t hangingNodes = 0;
 };
 
 /// Counts the seams of a deck's shells. Deterministic.

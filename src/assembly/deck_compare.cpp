@@ -95,6 +95,8 @@ void compareSeams(const FeModel& before, const FeModel& after, DeckComparison& r
   }
   result.tJunctionEdgesBefore = seamsBefore.tJunctionEdges;
   result.tJunctionEdgesAfter = seamsAfter.tJunctionEdges;
+  result.hangingNodesBefore = seamsBefore.hangingNodes;
+  result.hangingNodesAfter = seamsAfter.hangingNodes;
 }
 
 void compareHardPoints(const FeModel& before, const Positions& oldPositions,

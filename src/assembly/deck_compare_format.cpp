@@ -48,6 +48,10 @@ std::string formatComparisonTable(const DeckComparison& c) {
                 c.tJunctionEdgesBefore, c.tJunctionEdgesAfter);
   out += line;
   std::snprintf(line, sizeof line,
+                "  nodes inside an edge of a part they share a seam with: %zu before, %zu after\n",
+                c.hangingNodesBefore, c.hangingNodesAfter);
+  out += line;
+  std::snprintf(line, sizeof line,
                 "\nhard points: %zu, %zu missing, %zu moved (largest move %.6g)\n", c.hardPoints,
                 c.hardPointsMissing, c.hardPointsMoved, c.largestHardPointMove);
   out += line;
@@ -124,6 +128,8 @@ std::string formatComparisonJson(const DeckComparison& c) {
   out += "\n  ],\n  ";
   number("t_junction_edges_before", double(c.tJunctionEdgesBefore));
   number("t_junction_edges_after", double(c.tJunctionEdgesAfter));
+  number("hanging_nodes_before", double(c.hangingNodesBefore));
+  number("hanging_nodes_after", double(c.hangingNodesAfter));
   out += "\n  ";
   number("hard_points", double(c.hardPoints));
   number("hard_points_missing", double(c.hardPointsMissing));

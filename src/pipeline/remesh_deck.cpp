@@ -672,10 +672,12 @@ std::string remeshReportJson(const RemeshReport& report) {
   }
   std::snprintf(buffer, sizeof buffer,
                 "\n  ],\n  \"t_junction_edges_in\": %zu,\n  \"t_junction_edges_out\": %zu,\n"
+                "  \"hanging_nodes_in\": %zu,\n  \"hanging_nodes_out\": %zu,\n"
                 "  \"removed_nodes\": %zu,\n  \"new_nodes\": %zu,\n  \"hard_points_kept\": %zu,\n"
                 "  \"element_loads_rewritten\": %zu,\n  \"element_set_members_rewritten\": %zu,\n"
                 "  \"seconds\": %.6f\n}\n",
                 report.seamsBefore.tJunctionEdges, report.seamsAfter.tJunctionEdges,
+                report.seamsBefore.hangingNodes, report.seamsAfter.hangingNodes,
                 assembly.removedNodes, assembly.newNodes, assembly.hardPointsKept,
                 assembly.elementLoadsRewritten, assembly.elementSetMembersRewritten,
                 report.totalSeconds);
