@@ -186,6 +186,19 @@ std::vector<double> gradedPieces(long pieces, double startRatio, double endRatio
   return weights;
 }
 
+/// Appends to `nodes` the `pieces` - 1 nodes inside the span of `length` from param `from`, cut as
+/// gradedPieces(pieces, startRatio, endRatio) cuts it (at no curve point).
+void appendSpanNodes(double from, double length, long pieces, double startRatio, double endRatio,
+                     std::vector<CurveNode>& nodes) {
+  const std::vector<double> weights = gradedPieces(pieces, startRatio, endRatio);
+  double total = 0.0, reached = 0.0;
+  for (double weight : weights) total += weight;
+  for (long j = 1; j < pieces; ++j) {
+    reached += weights[std::size_t(j - 1)];
+    nodes.push_back({from + length * reached / total});
+  }
+}
+
 /// The nodes of an open curve with stations (VolumeCurve::stations): its anchors (`anchors`,
 /// curve points, ascending) and the stations cut it into spans; the spans of one stretch (between
 /// two stations, or a station and an end) share that stretch's pieces by their lengths
@@ -234,16 +247,9 @@ std::vector<CurveNode> sampleWithStations(const Walk& walk, const std::vector<st
   std::vector<std::size_t> used(pieces.size(), 0);
   for (std::size_t k = 0; k + 1 < ends.size(); ++k) {
     const std::size_t g = stretchOf(ends[k].param);
-    const long count = pieces[g][used[g]++];
-    const double from = ends[k].param, span = ends[k + 1].param - from;
-    const std::vector<double> weights = gradedPieces(count, ratioAt(ends[k]), ratioAt(ends[k + 1]));
-    double total = 0.0, reached = 0.0;
-    for (double weight : weights) total += weight;
     nodes.push_back(ends[k]);
-    for (long j = 1; j < count; ++j) {
-      reached += weights[std::size_t(j - 1)];
-      nodes.push_back({from + span * reached / total});
-    }
+    appendSpanNodes(ends[k].param, ends[k + 1].param - ends[k].param, pieces[g][used[g]++],
+                    ratioAt(ends[k]), ratioAt(ends[k + 1]), nodes);
   }
   nodes.push_back(ends.back());
   return nodes;
@@ -304,16 +310,9 @@ std::vector<CurveNode> sampleCurve(const Walk& walk, bool keepPoints, long count
     const double length = to - from;
     long pieces = ownCount ? ownPieces[k] : std::max(1L, std::lround(length / spacing));
     if (walk.closed && anchors.size() == 2) pieces = std::max(3L, pieces);
-    const std::vector<double> weights =
-        gradedPieces(pieces, grading[anchors[k] % n], grading[anchors[k + 1] % n]);
-    double total = 0.0;
-    for (double weight : weights) total += weight;
     std::vector<CurveNode> span{{from, anchors[k] % n}};
-    double reached = 0.0;
-    for (long j = 1; j < pieces; ++j) {
-      reached += weights[std::size_t(j - 1)];
-      span.push_back({from + length * reached / total});
-    }
+    appendSpanNodes(from, length, pieces, grading[anchors[k] % n], grading[anchors[k + 1] % n],
+                    span);
     span.push_back({to, anchors[k + 1] % n});
     for (std::size_t j = 0; j + 1 < span.size(); ++j) {
       nodes.push_back(span[j]);
