@@ -193,3 +193,26 @@ TEST(DeckCompare, FreedlmRibsRemeshedNextToTheirRigidLinksLoseNothing) {
   const std::string out = test::readText(dir / "out.bdf");
   EXPECT_NE(out.find("RBE2     10      19506   123     24005"), std::string::npos);
 }
+
+TEST(DeckCompare, ANodeLeftInsideANeighboursEdgeIsALoss) {
+  // Two unit quads sharing the edge x = 1 (nodes 2 and 5). After, part 2 has a node (9) in the
+  // middle of that edge, which part 1 lacks: the seam no longer conforms.
+  FeModel before;
+  const double xs[] = {0, 1, 2, 0, 1, 2}, ys[] = {0, 0, 0, 1, 1, 1};
+  for (int n = 0; n < 6; ++n) test::addNode(before, n + 1, xs[n], ys[n], 0.0);
+  FeModel after = before;
+  test::addShell(before, 1, 1, {1, 2, 5, 4});
+  test::addShell(before, 2, 2, {2, 3, 6, 5});
+  test::addNode(after, 9, 1.0, 0.5, 0.0);
+  test::addNode(after, 10, 2.0, 0.5, 0.0);
+  test::addShell(after, 1, 1, {1, 2, 5, 4});
+  test::addShell(after, 2, 2, {2, 3, 10, 9});
+  test::addShell(after, 3, 2, {9, 10, 6, 5});
+  EXPECT_TRUE(compareDecks(before, before).losses.empty());
+  const DeckComparison comparison = compareDecks(before, after);
+  EXPECT_EQ(comparison.hangingNodesBefore, 0u);
+  EXPECT_EQ(comparison.hangingNodesAfter, 1u);
+  EXPECT_TRUE(anyLossMentions(
+      comparison, "nodes inside an edge of a part they share a seam with: 1 (0 before)"))
+      << formatComparisonTable(comparison);
+}

@@ -900,6 +900,18 @@ TEST(Pipeline, DeckSeamsCountNodesInsideTheEdgesOfPartsTheyShareASeamWith) {
   EXPECT_EQ(deckSeams(touching).hangingNodes, 0u);
 }
 
+TEST(Pipeline, MoreNodesHangingOnSeamsThanInTheInputIsNoFullSuccess) {
+  // remesh exits 0 only when allAccepted: every part passed and no seam got hanging nodes.
+  RemeshReport report;
+  report.parts.resize(1);
+  report.parts[0].status = PartStatus::Remeshed;
+  report.seamsBefore.hangingNodes = report.seamsAfter.hangingNodes = 2;  // the input's own
+  EXPECT_TRUE(report.allAccepted());
+  report.seamsAfter.hangingNodes = 3;
+  EXPECT_TRUE(report.moreHangingNodes());
+  EXPECT_FALSE(report.allAccepted());
+}
+
 TEST(Pipeline, APartNotRemeshedKeepsEveryNodeOfItsSeam) {
   // Only the wall is remeshed, at 7 units: its seam to the plate, which keeps its elements, must
   // keep all 11 of the plate's seam nodes (at 7 units the seam alone would get 6 pieces).

@@ -118,6 +118,8 @@ struct BatchResult {
   std::optional<double> qualityFailureShare;
   std::optional<double> maxDistance;
   std::optional<std::size_t> partsKept;  ///< remesh jobs: parts kept unchanged
+  /// Remesh jobs: more nodes hang on seams than in the input (RemeshReport::moreHangingNodes).
+  bool moreHangingNodes = false;
   /// A skipped job (resume) whose earlier result was restored from the earlier summary.
   bool fromEarlierRun = false;
 };

@@ -214,8 +214,11 @@ struct RemeshReport {
   double totalSeconds = 0.0;
   /// Parts with the given status.
   std::size_t count(PartStatus status) const;
-  /// Every part was remeshed or retried (none kept).
-  bool allAccepted() const { return count(PartStatus::Kept) == 0; }
+  /// More nodes of the output than of the input lie inside an edge of a part they share a seam
+  /// with (DeckSeams::hangingNodes): a seam where one side has a node the other lacks.
+  bool moreHangingNodes() const { return seamsAfter.hangingNodes > seamsBefore.hangingNodes; }
+  /// Every part was remeshed or retried (none kept) and no more nodes hang on seams.
+  bool allAccepted() const { return count(PartStatus::Kept) == 0 && !moreHangingNodes(); }
 };
 
 /// Progress of remeshDeck: the stage ("volume", "extract", "assemble"), the part (0 for the

@@ -97,6 +97,10 @@ void compareSeams(const FeModel& before, const FeModel& after, DeckComparison& r
   result.tJunctionEdgesAfter = seamsAfter.tJunctionEdges;
   result.hangingNodesBefore = seamsBefore.hangingNodes;
   result.hangingNodesAfter = seamsAfter.hangingNodes;
+  if (seamsAfter.hangingNodes > seamsBefore.hangingNodes)
+    result.losses.push_back("nodes inside an edge of a part they share a seam with: " +
+                            std::to_string(seamsAfter.hangingNodes) + " (" +
+                            std::to_string(seamsBefore.hangingNodes) + " before)");
 }
 
 void compareHardPoints(const FeModel& before, const Positions& oldPositions,

@@ -141,6 +141,11 @@ void runRemesh(const BatchJob& job, const JobSettings& settings, BatchResult& re
   for (const RemeshedPart& part : report.parts)
     if (part.status == PartStatus::Kept)
       result.message += "; part " + std::to_string(part.plan.part) + " kept: " + part.reason;
+  result.moreHangingNodes = report.moreHangingNodes();
+  if (result.moreHangingNodes)
+    result.message += "; nodes inside an edge of a part they share a seam with: " +
+                      std::to_string(report.seamsAfter.hangingNodes) + " (" +
+                      std::to_string(report.seamsBefore.hangingNodes) + " in the input)";
 }
 
 void runChainJob(const BatchJob& job, BatchResult& result) {
@@ -198,7 +203,7 @@ BatchResult runJob(const BatchJob& job, const BatchOptions& options) {
         runChainJob(job, result);
         break;
     }
-    result.status = result.partsKept.value_or(0) > 0 ? "short" : "ok";
+    result.status = result.partsKept.value_or(0) > 0 || result.moreHangingNodes ? "short" : "ok";
   } catch (const std::bad_alloc&) {
     result.status = "failed";
     result.message = "out of memory";

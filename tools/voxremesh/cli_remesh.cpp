@@ -278,9 +278,9 @@ int runRemesh(const std::vector<std::string>& args) {
       warnings.push_back("parts " + std::to_string(parts.first) + " and " +
                          std::to_string(parts.second) + " shared " + std::to_string(count) +
                          " nodes and share none now");
-  if (report.seamsAfter.hangingNodes > report.seamsBefore.hangingNodes)
-    warnings.push_back(std::to_string(report.seamsAfter.hangingNodes) +
-                       " nodes lie inside an edge of a part they share a seam with (" +
+  if (report.moreHangingNodes())
+    warnings.push_back("nodes inside an edge of a part they share a seam with: " +
+                       std::to_string(report.seamsAfter.hangingNodes) + " (" +
                        std::to_string(report.seamsBefore.hangingNodes) + " in the input)");
   printWarnings(warnings);
 
