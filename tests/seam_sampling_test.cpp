@@ -1,12 +1,18 @@
 // Seam sampling over the deck (pipeline/seam_counts.h): the growth ratio of the pieces toward a
-// sharp corner of a narrow sheet follows the quality criteria, on the curves along its sides.
+// sharp corner of a narrow sheet follows the quality criteria, on the curves along its sides; the
+// curves facing each other across a narrow strip get the same counts, curve by curve.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "pipeline/seam_counts.h"
+#include "support/test_support.h"
+#include "voxremesh/pipeline.h"
 #include "voxremesh/quality.h"
 
 using namespace voxremesh;
@@ -49,4 +55,108 @@ TEST(SeamSampling, OnlyTheCurvesAlongAWedgesSidesShrinkTowardItsTip) {
   EXPECT_EQ(curves[0].grading, (Graded{{0, 1.25}}));
   EXPECT_EQ(curves[1].grading, (Graded{{2, 1.25}}));
   EXPECT_TRUE(curves[2].grading.empty());
+}
+
+/// Where the plates beside the strip of stripBetweenSplitPlates change parts, below and above.
+std::pair<double, double> stripJoints(bool tip) {
+  return tip ? std::make_pair(10.8, 10.6) : std::make_pair(10.6, 10.4);
+}
+
+/// A strip (part 1, one row of quads in z = 0 along y = 0..1, x = 0..39) between plates 10 wide,
+/// each side's plate made of two parts (stripJoints): below, parts 2 and 3 meet at x = 10.6; above,
+/// parts 4 and 5 at x = 10.4. So each side of the strip is two seams, their joints facing each
+/// other. The strip is 1 wide; with `tip`, it tapers from 1 wide at x = 0 to a tip at (39, 0)
+/// instead (the plate above following its top side), and its joints are at 10.8 and 10.6.
+FeModel stripBetweenSplitPlates(bool tip) {
+  const auto [below, above] = stripJoints(tip);
+  FeModel model;
+  std::vector<double> bottomX, topX;  // the strip's node abscissae along its two sides
+  for (int i = 0; i <= 39; ++i) {
+    bottomX.push_back(i);
+    topX.push_back(i);
+    if (i == 10) bottomX.push_back(below), topX.push_back(above);
+  }
+  const std::size_t n = bottomX.size();  // nodes per side
+  const auto topY = [&](double x) { return tip ? 1.0 - x / 39.0 : 1.0; };
+  const auto id = [&](int row, std::size_t i) {
+    return tip && row == 1 && i + 1 == n ? Id(1 + Id(i)) : Id(1000 * row + 1 + Id(i));
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    test::addNode(model, id(0, i), bottomX[i], 0.0);
+    if (id(1, i) != id(0, i)) test::addNode(model, id(1, i), topX[i], topY(topX[i]));
+    test::addNode(model, id(2, i), bottomX[i], -10.0);
+    test::addNode(model, id(3, i), topX[i], 11.0);
+  }
+  Id shell = 1;
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    if (id(1, i + 1) == id(0, i + 1))
+      test::addShell(model, shell++, 1, {id(0, i), id(0, i + 1), id(1, i)});
+    else
+      test::addShell(model, shell++, 1, {id(0, i), id(0, i + 1), id(1, i + 1), id(1, i)});
+    test::addShell(model, shell++, bottomX[i] < below - 0.05 ? 2 : 3,
+                   {id(2, i), id(2, i + 1), id(0, i + 1), id(0, i)});
+    test::addShell(model, shell++, topX[i] < above - 0.05 ? 4 : 5,
+                   {id(1, i), id(1, i + 1), id(3, i + 1), id(3, i)});
+  }
+  return model;
+}
+
+/// After a remesh of the strip of stripBetweenSplitPlates at size 3: how many of part 1's nodes lie
+/// on its bottom and top sides before the joints and after them (the tip excepted), and how many
+/// of its elements are triangles.
+struct StripCounts {
+  std::map<std::pair<int, bool>, int> nodes;  // (side: 0 below, 1 above; after the joints)
+  int triangles = 0;
+  PartStatus status = PartStatus::Kept;  ///< the strip's
+  std::string reason;                    ///< the strip's
+};
+
+/// Remeshes stripBetweenSplitPlates(tip) at size 3, expecting no part kept.
+StripCounts remeshedStrip(bool tip) {
+  FeModel model = stripBetweenSplitPlates(tip);
+  RemeshSettings settings;
+  settings.targetSize = 3.0;
+  const RemeshReport report = remeshDeck(model, settings);
+  StripCounts counts;
+  for (const RemeshedPart& part : report.parts) {
+    EXPECT_NE(part.status, PartStatus::Kept) << part.plan.part << ": " << part.reason;
+    if (part.plan.part == 1) counts.status = part.status, counts.reason = part.reason;
+  }
+  std::set<Id> ids;
+  for (const Shell& shell : model.shells)
+    if (shell.part == 1) {
+      counts.triangles += shell.nodeCount == 3;
+      for (int c = 0; c < shell.nodeCount; ++c) ids.insert(shell.nodes[std::size_t(c)]);
+    }
+  const auto [below, above] = stripJoints(tip);
+  const double middle = 0.5 * (below + above);
+  for (const Node& node : model.nodes)
+    if (ids.count(node.id) && node.xyz[0] < 38.9 && std::abs(node.xyz[0] - middle) > 0.2)
+      ++counts.nodes[{node.xyz[1] > 1e-9, node.xyz[0] > middle}];
+  return counts;
+}
+
+TEST(SeamSampling, TheSeamsFacingEachOtherAcrossAStripGetTheSameCountsOneByOne) {
+  // Sampled on its own at size 3, each seam would get round(length / 3) pieces: 4 and 9 below
+  // (10.6 and 28.4 long), 3 and 10 above (10.4 and 28.6). The totals match; the stretches do not,
+  // so the strip's row would slant and need triangles. Since the joints face each other, each
+  // seam gets the count of the one across: the row is quads only, its rungs straight across.
+  const StripCounts counts = remeshedStrip(false);
+  EXPECT_EQ(counts.status, PartStatus::Remeshed) << counts.reason;
+  EXPECT_EQ(counts.triangles, 0);
+  EXPECT_EQ((counts.nodes.at({0, false})), (counts.nodes.at({1, false})));
+  EXPECT_EQ((counts.nodes.at({0, true})), (counts.nodes.at({1, true})));
+}
+
+TEST(SeamSampling, TheTwoLongSidesOfAStripRunningIntoATipAreTiedToo) {
+  // The strip tapering into a tip: its patch has three corners, and its long sides face each other
+  // (the base, 1 long, is the shortest side). Its row length is about 1.65 (its mean width, 0.49,
+  // times the aspect limit over 1.5): alone, the seams before the joints (10.8 and 10.6 long) would
+  // get 7 and 6 pieces. The long sides are tied as a four-sided strip's are: the rungs run
+  // straight across, and the one triangle is at the tip.
+  const StripCounts counts = remeshedStrip(true);
+  EXPECT_EQ(counts.status, PartStatus::Remeshed) << counts.reason;
+  EXPECT_EQ(counts.triangles, 1);
+  EXPECT_EQ((counts.nodes.at({0, false})), (counts.nodes.at({1, false})));
+  EXPECT_EQ((counts.nodes.at({0, true})), (counts.nodes.at({1, true})));
 }

@@ -125,10 +125,86 @@ double curveLength(const Sheet& sheet, const Polyline& curve) {
   return length;
 }
 
-/// Adds to `ties` the pairs of opposite sides of the sheet's four-sided one-loop patches where
-/// both sides are made of whole junction curves (a side with a free stretch adapts by itself; a
-/// side ending inside a curve is left alone), the stations of a side of one curve facing a side
-/// of several (addStations), and the patch's sides (CurveTies::patches).
+/// A side of a patch, from one corner of its loop to the next, made of whole junction curves.
+struct PatchSide {
+  CurveSide keys;                   ///< the curves' keys, in loop order
+  std::vector<std::size_t> curves;  ///< the curves' indices in the sheet, in loop order
+  std::vector<Vec3> joints;         ///< where one curve gives way to the next, in loop order
+  double length = 0.0;              ///< along the loop
+};
+
+/// The side of the loop from corner point `from` to corner point `to` (loop indices), or nothing
+/// when a stretch of it is no junction curve (a free stretch adapts by itself) or it ends inside
+/// a curve.
+std::optional<PatchSide> patchSide(
+    const Sheet& sheet, const std::vector<PointIndex>& loop, std::size_t from, std::size_t to,
+    const std::map<std::pair<PointIndex, PointIndex>, std::size_t>& curveOfEdge) {
+  PatchSide side;
+  std::vector<std::size_t> segments;  // per curve of the side, the loop edges along it
+  for (std::size_t i = from; i != to; i = (i + 1) % loop.size()) {
+    const PointIndex a = loop[i], b = loop[(i + 1) % loop.size()];
+    const auto it = curveOfEdge.find(pointEdge(a, b));
+    if (it == curveOfEdge.end()) return std::nullopt;
+    if (side.curves.empty() || side.curves.back() != it->second) {
+      if (!side.curves.empty()) side.joints.push_back(sheet.points[a]);
+      side.curves.push_back(it->second);
+      segments.push_back(0);
+    }
+    ++segments.back();
+    side.length += distance(sheet.points[a], sheet.points[b]);
+  }
+  if (side.curves.empty()) return std::nullopt;
+  for (std::size_t c = 0; c < side.curves.size(); ++c) {
+    const Polyline& curve = sheet.junctionCurves[side.curves[c]];
+    if (segments[c] + 1 != curve.points.size()) return std::nullopt;
+    side.keys.push_back(curveKey(sheet, curve));
+  }
+  return side;
+}
+
+/// True when sides `a` and `b`, facing each other across a patch (so running in opposite
+/// directions round its loop), are made of as many curves, two or more, whose joints face each
+/// other: each joint of one is the nearest to its counterpart among the other's joints, both ways.
+bool jointsFace(const PatchSide& a, const PatchSide& b) {
+  const std::size_t joints = a.joints.size();
+  if (joints == 0 || b.joints.size() != joints) return false;
+  const auto nearest = [](const Vec3& p, const std::vector<Vec3>& among) {
+    std::size_t best = 0;
+    for (std::size_t j = 1; j < among.size(); ++j)
+      if (distance(p, among[j]) < distance(p, among[best])) best = j;
+    return best;
+  };
+  for (std::size_t i = 0; i < joints; ++i) {
+    const std::size_t across = joints - 1 - i;
+    if (nearest(a.joints[i], b.joints) != across || nearest(b.joints[across], a.joints) != i)
+      return false;
+  }
+  return true;
+}
+
+/// Adds to `ties` what two sides facing each other across a patch ask: where their joints face
+/// each other (jointsFace), each curve of one and the curve facing it get the same count, so
+/// that the rows between them run straight across; else the two sides get the same total, and a
+/// side of one curve facing several gets stations facing their joints (addStations).
+void tieFacingSides(const Sheet& sheet, const PatchSide& a, const PatchSide& b, CurveTies& ties) {
+  if (jointsFace(a, b)) {
+    const std::size_t count = a.keys.size();
+    for (std::size_t c = 0; c < count; ++c)
+      ties.pairs.emplace_back(CurveSide{a.keys[c]}, CurveSide{b.keys[count - 1 - c]});
+    return;
+  }
+  ties.pairs.emplace_back(a.keys, b.keys);
+  if (a.curves.size() == 1 && b.curves.size() > 1)
+    addStations(sheet, sheet.junctionCurves[a.curves[0]], b.curves, ties);
+  if (b.curves.size() == 1 && a.curves.size() > 1)
+    addStations(sheet, sheet.junctionCurves[b.curves[0]], a.curves, ties);
+}
+
+/// Adds to `ties` the sides facing each other across the sheet's one-loop patches where both are
+/// made of whole junction curves (tieFacingSides): the opposite sides of a four-sided patch, and
+/// the two long sides of a three-sided one (a strip running into a tip: the sides meeting at the
+/// corner opposite its shortest side), and the sides of each four-sided patch
+/// (CurveTies::patches).
 void tieOppositeCurves(const Sheet& sheet, CurveTies& ties) {
   std::map<std::pair<PointIndex, PointIndex>, std::size_t> curveOfEdge;
   for (std::size_t c = 0; c < sheet.junctionCurves.size(); ++c) {
@@ -149,43 +225,30 @@ void tieOppositeCurves(const Sheet& sheet, CurveTies& ties) {
     std::vector<std::array<double, 3>> loopPoints;
     for (const PointIndex p : loop) loopPoints.push_back(sheet.points[p]);
     const std::vector<std::size_t> corners = extract::loopCorners(loopPoints);
-    if (corners.size() != 4) continue;
-    std::array<std::optional<CurveSide>, 4> sides;
-    std::array<std::vector<std::size_t>, 4> sideCurves;  // curve indices, in loop order
-    for (std::size_t k = 0; k < 4; ++k) {
-      // The curves along the side, each with the segments the side runs along it.
-      std::vector<std::pair<std::size_t, std::size_t>> run;  // (curve, segments)
-      bool junctionsOnly = true;
-      for (std::size_t i = corners[k]; i != corners[(k + 1) % 4]; i = (i + 1) % loop.size()) {
-        const auto it = curveOfEdge.find(pointEdge(loop[i], loop[(i + 1) % loop.size()]));
-        if (it == curveOfEdge.end()) {
-          junctionsOnly = false;
-          break;
-        }
-        if (run.empty() || run.back().first != it->second) run.emplace_back(it->second, 0);
-        ++run.back().second;
-      }
-      if (!junctionsOnly || run.empty()) continue;
-      CurveSide side;
-      for (const auto& [curve, segments] : run) {
-        if (segments + 1 != sheet.junctionCurves[curve].points.size()) break;
-        side.push_back(curveKey(sheet, sheet.junctionCurves[curve]));
-      }
-      if (side.size() != run.size()) continue;
-      sides[k] = std::move(side);
-      for (const auto& entry : run) sideCurves[k].push_back(entry.first);
+    const std::size_t count = corners.size();
+    if (count != 3 && count != 4) continue;
+    std::vector<std::optional<PatchSide>> sides;
+    for (std::size_t k = 0; k < count; ++k)
+      sides.push_back(patchSide(sheet, loop, corners[k], corners[(k + 1) % count], curveOfEdge));
+    if (count == 3) {
+      std::array<double, 3> length{0.0, 0.0, 0.0};
+      for (std::size_t k = 0; k < 3; ++k)
+        for (std::size_t i = corners[k]; i != corners[(k + 1) % 3]; i = (i + 1) % loop.size())
+          length[k] += distance(loopPoints[i], loopPoints[(i + 1) % loop.size()]);
+      const std::size_t shortest =
+          std::size_t(std::min_element(length.begin(), length.end()) - length.begin());
+      const auto& a = sides[(shortest + 1) % 3];
+      const auto& b = sides[(shortest + 2) % 3];
+      if (a && b && length[shortest] < std::min(a->length, b->length))
+        tieFacingSides(sheet, *a, *b, ties);
+      continue;
     }
     std::array<CurveSide, 4> patchSides;
     for (std::size_t k = 0; k < 4; ++k)
-      if (sides[k]) patchSides[k] = *sides[k];
+      if (sides[k]) patchSides[k] = sides[k]->keys;
     ties.patches.push_back(std::move(patchSides));
-    for (std::size_t k = 0; k < 2; ++k) {
-      if (!sides[k] || !sides[k + 2]) continue;
-      ties.pairs.emplace_back(*sides[k], *sides[k + 2]);
-      const std::vector<std::size_t>&a = sideCurves[k], &b = sideCurves[k + 2];
-      if (a.size() == 1 && b.size() > 1) addStations(sheet, sheet.junctionCurves[a[0]], b, ties);
-      if (b.size() == 1 && a.size() > 1) addStations(sheet, sheet.junctionCurves[b[0]], a, ties);
-    }
+    for (std::size_t k = 0; k < 2; ++k)
+      if (sides[k] && sides[k + 2]) tieFacingSides(sheet, *sides[k], *sides[k + 2], ties);
   }
 }
 
