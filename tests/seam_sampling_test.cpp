@@ -160,3 +160,32 @@ TEST(SeamSampling, TheTwoLongSidesOfAStripRunningIntoATipAreTiedToo) {
   EXPECT_EQ((counts.nodes.at({0, false})), (counts.nodes.at({1, false})));
   EXPECT_EQ((counts.nodes.at({0, true})), (counts.nodes.at({1, true})));
 }
+
+TEST(SeamSampling, AStripTaperingAlongGetsRungsWithinTheJacobianRatio) {
+  // A strip (part 1, z = 0) widening from 1 at x = 0 to 2.5 at x = 6, between a plate below
+  // (part 2, its seam along y = 0) and one above (part 3, its seam the strip's slanting top). At
+  // size 6 its row length (4.5) would give it one quad, its parallel sides 1 and 2.5 (Jacobian
+  // ratio 0.4). Its seams get the pieces that keep each quad's sides within sqrt(0.6) instead:
+  // the strip passes at its first attempt.
+  FeModel model;
+  for (int i = 0; i <= 6; ++i) {
+    test::addNode(model, Id(1 + i), i, 0.0);
+    test::addNode(model, Id(11 + i), i, 1.0 + 0.25 * i);
+    test::addNode(model, Id(21 + i), i, -6.0);
+    test::addNode(model, Id(31 + i), i, 8.0);
+  }
+  Id shell = 1;
+  for (int i = 0; i < 6; ++i) {
+    test::addShell(model, shell++, 1, {Id(1 + i), Id(2 + i), Id(12 + i), Id(11 + i)});
+    test::addShell(model, shell++, 2, {Id(21 + i), Id(22 + i), Id(2 + i), Id(1 + i)});
+    test::addShell(model, shell++, 3, {Id(11 + i), Id(12 + i), Id(32 + i), Id(31 + i)});
+  }
+  RemeshSettings settings;
+  settings.targetSize = 6.0;
+  const RemeshReport report = remeshDeck(model, settings);
+  ASSERT_EQ(report.parts.size(), 3u);
+  const RemeshedPart& strip = report.parts[0];
+  ASSERT_EQ(strip.plan.part, 1);
+  EXPECT_EQ(strip.status, PartStatus::Remeshed) << strip.reason;
+  EXPECT_EQ(strip.acceptance.failing, 0u) << strip.reason;
+}

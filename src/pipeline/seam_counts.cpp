@@ -54,6 +54,9 @@ struct CurveTies {
   /// Four-sided patches: their sides in order round the loop (empty: not made of whole curves).
   std::vector<std::array<CurveSide, 4>> patches;
   std::vector<std::pair<NodeEdge, TiedCurve>> curves;
+  /// Curves facing one across a patch whose rungs at their two ends differ in length (a tapering
+  /// strip): the curve and the pieces that keep the rows between within the Jacobian ratio.
+  std::vector<std::pair<NodeEdge, long>> tapers;
   /// Sharp corners: the corner's node ID and the next one's along a side, wedgeRatio.
   std::vector<std::pair<NodeEdge, double>> graded;
   std::vector<StationTie> stations;
@@ -129,8 +132,10 @@ double curveLength(const Sheet& sheet, const Polyline& curve) {
 struct PatchSide {
   CurveSide keys;                   ///< the curves' keys, in loop order
   std::vector<std::size_t> curves;  ///< the curves' indices in the sheet, in loop order
-  std::vector<Vec3> joints;         ///< where one curve gives way to the next, in loop order
-  double length = 0.0;              ///< along the loop
+  /// The curves' ends in loop order: the side's first corner, the joints where one curve gives way
+  /// to the next, its last corner (curves.size() + 1 points).
+  std::vector<Vec3> ends;
+  double length = 0.0;  ///< along the loop
 };
 
 /// The side of the loop from corner point `from` to corner point `to` (loop indices), or nothing
@@ -146,7 +151,7 @@ std::optional<PatchSide> patchSide(
     const auto it = curveOfEdge.find(pointEdge(a, b));
     if (it == curveOfEdge.end()) return std::nullopt;
     if (side.curves.empty() || side.curves.back() != it->second) {
-      if (!side.curves.empty()) side.joints.push_back(sheet.points[a]);
+      side.ends.push_back(sheet.points[a]);
       side.curves.push_back(it->second);
       segments.push_back(0);
     }
@@ -154,6 +159,7 @@ std::optional<PatchSide> patchSide(
     side.length += distance(sheet.points[a], sheet.points[b]);
   }
   if (side.curves.empty()) return std::nullopt;
+  side.ends.push_back(sheet.points[loop[to]]);
   for (std::size_t c = 0; c < side.curves.size(); ++c) {
     const Polyline& curve = sheet.junctionCurves[side.curves[c]];
     if (segments[c] + 1 != curve.points.size()) return std::nullopt;
@@ -163,34 +169,60 @@ std::optional<PatchSide> patchSide(
 }
 
 /// True when sides `a` and `b`, facing each other across a patch (so running in opposite
-/// directions round its loop), are made of as many curves, two or more, whose joints face each
-/// other: each joint of one is the nearest to its counterpart among the other's joints, both ways.
+/// directions round its loop), are made of as many curves whose joints face each other: each
+/// joint of one is the nearest to its counterpart among the other's joints, both ways (so too
+/// two single curves).
 bool jointsFace(const PatchSide& a, const PatchSide& b) {
-  const std::size_t joints = a.joints.size();
-  if (joints == 0 || b.joints.size() != joints) return false;
-  const auto nearest = [](const Vec3& p, const std::vector<Vec3>& among) {
-    std::size_t best = 0;
-    for (std::size_t j = 1; j < among.size(); ++j)
+  const std::size_t ends = a.ends.size();
+  if (b.ends.size() != ends) return false;
+  // The joint before end `i` of one side nearest to `p` (the sides' corners excepted).
+  const auto nearest = [ends](const Vec3& p, const std::vector<Vec3>& among) {
+    std::size_t best = 1;
+    for (std::size_t j = 2; j + 1 < ends; ++j)
       if (distance(p, among[j]) < distance(p, among[best])) best = j;
     return best;
   };
-  for (std::size_t i = 0; i < joints; ++i) {
-    const std::size_t across = joints - 1 - i;
-    if (nearest(a.joints[i], b.joints) != across || nearest(b.joints[across], a.joints) != i)
-      return false;
+  for (std::size_t i = 1; i + 1 < ends; ++i) {
+    const std::size_t across = ends - 1 - i;
+    if (nearest(a.ends[i], b.ends) != across || nearest(b.ends[across], a.ends) != i) return false;
   }
   return true;
+}
+
+/// The pieces a curve needs between two rungs across a strip, `shorter` and `longer` long, so that
+/// the rows' rungs between, growing evenly, keep each trapezoid's parallel sides (its Jacobian
+/// ratio at the corners) within the square root of minJacobianRatio: halfway (geometrically)
+/// between a rectangle and the limit, as wedgeRatio keeps a wedge's; and no more than keep its
+/// pieces at least the longer rung over the aspect limit. 1 where the rungs are that close, or
+/// where one is a point (a tip, which wedge grading or a triangle takes).
+long taperPieces(double shorter, double longer, double curveLength,
+                 const QualitySettings& criteria) {
+  if (!(shorter > 1e-9 * longer)) return 1;
+  const double ratio = std::sqrt(criteria.minJacobianRatio);
+  const double needed = (longer - shorter) * ratio / (shorter * (1.0 - ratio));
+  const double most = curveLength * criteria.maxAspectRatio / longer;
+  return std::max(1L, long(std::min(std::ceil(needed - 1e-9), std::floor(most))));
 }
 
 /// Adds to `ties` what two sides facing each other across a patch ask: where their joints face
 /// each other (jointsFace), each curve of one and the curve facing it get the same count, so
 /// that the rows between them run straight across; else the two sides get the same total, and a
 /// side of one curve facing several gets stations facing their joints (addStations).
-void tieFacingSides(const Sheet& sheet, const PatchSide& a, const PatchSide& b, CurveTies& ties) {
+void tieFacingSides(const Sheet& sheet, const PatchSide& a, const PatchSide& b,
+                    const QualitySettings& criteria, CurveTies& ties) {
   if (jointsFace(a, b)) {
     const std::size_t count = a.keys.size();
-    for (std::size_t c = 0; c < count; ++c)
-      ties.pairs.emplace_back(CurveSide{a.keys[c]}, CurveSide{b.keys[count - 1 - c]});
+    for (std::size_t c = 0; c < count; ++c) {
+      const std::size_t across = count - 1 - c;
+      ties.pairs.emplace_back(CurveSide{a.keys[c]}, CurveSide{b.keys[across]});
+      const double first = distance(a.ends[c], b.ends[across + 1]);
+      const double last = distance(a.ends[c + 1], b.ends[across]);
+      const double along = std::min(distance(a.ends[c], a.ends[c + 1]),
+                                    distance(b.ends[across], b.ends[across + 1]));
+      const long pieces =
+          taperPieces(std::min(first, last), std::max(first, last), along, criteria);
+      if (pieces > 1) ties.tapers.emplace_back(a.keys[c], pieces);
+    }
     return;
   }
   ties.pairs.emplace_back(a.keys, b.keys);
@@ -205,7 +237,7 @@ void tieFacingSides(const Sheet& sheet, const PatchSide& a, const PatchSide& b, 
 /// the two long sides of a three-sided one (a strip running into a tip: the sides meeting at the
 /// corner opposite its shortest side), and the sides of each four-sided patch
 /// (CurveTies::patches).
-void tieOppositeCurves(const Sheet& sheet, CurveTies& ties) {
+void tieOppositeCurves(const Sheet& sheet, const QualitySettings& criteria, CurveTies& ties) {
   std::map<std::pair<PointIndex, PointIndex>, std::size_t> curveOfEdge;
   for (std::size_t c = 0; c < sheet.junctionCurves.size(); ++c) {
     const Polyline& curve = sheet.junctionCurves[c];
@@ -240,7 +272,7 @@ void tieOppositeCurves(const Sheet& sheet, CurveTies& ties) {
       const auto& a = sides[(shortest + 1) % 3];
       const auto& b = sides[(shortest + 2) % 3];
       if (a && b && length[shortest] < std::min(a->length, b->length))
-        tieFacingSides(sheet, *a, *b, ties);
+        tieFacingSides(sheet, *a, *b, criteria, ties);
       continue;
     }
     std::array<CurveSide, 4> patchSides;
@@ -248,7 +280,7 @@ void tieOppositeCurves(const Sheet& sheet, CurveTies& ties) {
       if (sides[k]) patchSides[k] = sides[k]->keys;
     ties.patches.push_back(std::move(patchSides));
     for (std::size_t k = 0; k < 2; ++k)
-      if (sides[k] && sides[k + 2]) tieFacingSides(sheet, *sides[k], *sides[k + 2], ties);
+      if (sides[k] && sides[k + 2]) tieFacingSides(sheet, *sides[k], *sides[k + 2], criteria, ties);
   }
 }
 
@@ -301,7 +333,7 @@ CurveTies partTies(const FeModel& model, const PartPlan& plan, double junctionSp
       continue;  // a sheet meshed through a volume: no rows to match
     gradeSharpCorners(sheet, settings.optimizeSettings.quality, ties.graded);
     const std::size_t before = ties.pairs.size();
-    tieOppositeCurves(sheet, ties);
+    tieOppositeCurves(sheet, settings.optimizeSettings.quality, ties);
     if (ties.pairs.size() == before) continue;
     const extract::JunctionNodes junctions = sheetJunctionNodes(sheet, spacing);
     for (const Polyline& curve : sheet.junctionCurves) {
@@ -395,10 +427,12 @@ SeamSampling seamSampling(const std::vector<FeModel>& models, const std::vector<
   matchPairs();
   // Then each side of a four-sided patch whose pieces are longer than the aspect limit times
   // the pieces of a side across it that has two or more (a patch two elements across, where a
-  // web stands on the middle of its end) gets as many as that limit asks, by the counts matched
-  // so far (once: a raise does not raise others' bounds), and the pairs are matched again.
+  // web stands on the middle of its end) gets as many as that limit asks, and each curve along a
+  // tapering strip as many as keep its rows' trapezoids within the Jacobian ratio (taperPieces),
+  // by the counts matched so far (once: a raise does not raise others' bounds), and the pairs
+  // are matched again.
   const double aspect = settings.optimizeSettings.quality.maxAspectRatio;
-  std::vector<std::pair<const CurveSide*, long>> aspectRaises;
+  std::vector<std::pair<CurveSide, long>> raises;
   for (const CurveTies& ties : perPlan)
     for (const auto& patch : ties.patches)
       for (std::size_t k = 0; k < 4; ++k) {
@@ -409,10 +443,16 @@ SeamSampling seamSampling(const std::vector<FeModel>& models, const std::vector<
             across = std::min(across, length(patch[j]) / double(sum(patch[j])));
         if (!std::isfinite(across)) continue;
         const long needed = long(std::ceil(length(patch[k]) / (aspect * across) - 1e-9));
-        if (needed > sum(patch[k])) aspectRaises.emplace_back(&patch[k], needed - sum(patch[k]));
+        if (needed > sum(patch[k])) raises.emplace_back(patch[k], needed - sum(patch[k]));
       }
-  for (const auto& [side, more] : aspectRaises) raise(*side, more);
-  if (!aspectRaises.empty()) matchPairs();
+  std::map<NodeEdge, long> tapers;  // per curve, the most pieces any patch asks
+  for (const CurveTies& ties : perPlan)
+    for (const auto& [key, pieces] : ties.tapers)
+      if (count.count(key)) tapers[key] = std::max(tapers[key], pieces);
+  for (const auto& [key, pieces] : tapers)
+    if (pieces > count.at(key)) raises.emplace_back(CurveSide{key}, pieces - count.at(key));
+  for (const auto& [side, more] : raises) raise(side, more);
+  if (!raises.empty()) matchPairs();
   SeamSampling sampling;
   for (const auto& [key, curve] : curves)
     if (count.at(key) > curve.pieces) sampling.counts[key] = count.at(key);

@@ -1,16 +1,19 @@
 // Node counts of junction curves that face each other across a narrow sheet (interval
 // assignment): where a narrow sheet's patch is four-sided (narrow_sheet.h, mapped_patch.h) and
-// two opposite sides are each one whole junction curve, both curves get the same number of
+// two opposite sides are each made of whole junction curves, both sides get the same number of
 // pieces, so that the patch is a grid of rows and columns instead of a row with trapezoids and
-// triangles where the counts differ. Curves are tied through every patch that has them on
-// opposite sides, over the whole deck (the parts on both sides of a seam see the same curve): a
-// side may be several curves, and the side with fewer pieces gets more on its curve with the
-// longest pieces until both match. A single curve facing several across a patch gets stations,
-// nodes facing their joints, each stretch with the count of the curve across. A side whose
+// triangles where the counts differ; so do the two long sides of a three-sided patch (a strip
+// running into a tip). Curves are tied through every patch that has them on opposite sides,
+// over the whole deck (the parts on both sides of a seam see the same curve). Where both sides
+// are as many curves whose joints face each other, each curve gets the count of the one across
+// it; else the side with fewer pieces gets more on its curve with the longest pieces until the
+// totals match, and a single curve facing several gets stations, nodes facing their joints,
+// each stretch with the count of the curve across. From the matched counts, once: a side whose
 // pieces are longer than the aspect limit times the pieces across it (two or more across) gets
-// that many more, once, from the matched counts. And where a narrow sheet narrows into a sharp
-// corner, the junction curves along the two sides of that wedge get pieces shrinking toward it
-// (junction_nodes.h), on every part that has them. Internal to src/pipeline.
+// that many more, and a curve between rungs of different lengths (a tapering strip) as many as
+// keep its rows' trapezoids within the Jacobian ratio. And where a narrow sheet narrows into a
+// sharp corner, the junction curves along the two sides of that wedge get pieces shrinking
+// toward it (junction_nodes.h), on every part that has them. Internal to src/pipeline.
 #pragma once
 
 #include <array>
