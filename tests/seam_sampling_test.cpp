@@ -189,3 +189,39 @@ TEST(SeamSampling, AStripTaperingAlongGetsRungsWithinTheJacobianRatio) {
   EXPECT_EQ(strip.status, PartStatus::Remeshed) << strip.reason;
   EXPECT_EQ(strip.acceptance.failing, 0u) << strip.reason;
 }
+
+TEST(SeamSampling, AStripTallerInItsMiddleThanAtItsEndsGetsRowsWithinTheAspectLimit) {
+  // A rib web (part 1, z = 0) 40 long, 2 tall at its ends and 12 in its middle (its top a sine),
+  // between plates below and above (parts 2 and 3) that place their seams with it 1 apart, and
+  // with plates at its ends too (parts 4 and 5). Its ends sampled as those seams (2 pieces) would
+  // make two rows across, quads up to 6 x 1 in the middle (aspect 6); its tallest rung asks for
+  // three rows.
+  FeModel model;
+  const auto top = [](int i) { return 2.0 + 10.0 * std::sin(M_PI * i / 40.0); };
+  for (int i = 0; i <= 40; ++i) {
+    test::addNode(model, Id(1 + i), i, 0.0);
+    test::addNode(model, Id(101 + i), i, top(i));
+    test::addNode(model, Id(201 + i), i, -3.0);
+    test::addNode(model, Id(301 + i), i, top(i) + 3.0);
+  }
+  Id shell = 1;
+  for (int i = 0; i < 40; ++i) {
+    test::addShell(model, shell++, 1, {Id(1 + i), Id(2 + i), Id(102 + i), Id(101 + i)});
+    test::addShell(model, shell++, 2, {Id(201 + i), Id(202 + i), Id(2 + i), Id(1 + i)});
+    test::addShell(model, shell++, 3, {Id(101 + i), Id(102 + i), Id(302 + i), Id(301 + i)});
+  }
+  test::addNode(model, 401, -3.0, 0.0);
+  test::addNode(model, 402, -3.0, 2.0);
+  test::addNode(model, 501, 43.0, 0.0);
+  test::addNode(model, 502, 43.0, 2.0);
+  test::addShell(model, shell++, 4, {401, 1, 101, 402});
+  test::addShell(model, shell++, 5, {41, 501, 502, 141});
+  RemeshSettings settings;
+  settings.partSizes = {{1, 3.0}, {2, 1.0}, {3, 1.0}, {4, 3.0}, {5, 3.0}};
+  const RemeshReport report = remeshDeck(model, settings);
+  ASSERT_EQ(report.parts.size(), 5u);
+  const RemeshedPart& web = report.parts[0];
+  ASSERT_EQ(web.plan.part, 1);
+  EXPECT_EQ(web.status, PartStatus::Remeshed) << web.reason;
+  EXPECT_EQ(web.acceptance.failing, 0u) << web.reason;
+}

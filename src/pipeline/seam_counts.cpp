@@ -47,12 +47,21 @@ struct StationTie {
   std::vector<NodeEdge> across;  ///< stations.size() + 1 keys
 };
 
+/// A four-sided patch of a narrow sheet, for the aspect limit: its sides in order round the loop
+/// (empty: not made of whole curves), and per side the longest rung parallel to it (the largest
+/// distance between the two sides next to it, or its own length where that is more: a rib web
+/// taller in its middle than at its ends).
+struct TiedPatch {
+  std::array<CurveSide, 4> sides;
+  std::array<double, 4> extent{0.0, 0.0, 0.0, 0.0};
+};
+
 /// What one part asks: pairs of sides facing each other across its narrow sheets' four-sided
 /// patches, the pieces and length of each curve on such a side, and more.
 struct CurveTies {
   std::vector<std::pair<CurveSide, CurveSide>> pairs;
-  /// Four-sided patches: their sides in order round the loop (empty: not made of whole curves).
-  std::vector<std::array<CurveSide, 4>> patches;
+  /// Four-sided patches (TiedPatch).
+  std::vector<TiedPatch> patches;
   std::vector<std::pair<NodeEdge, TiedCurve>> curves;
   /// Curves facing one across a patch whose rungs at their two ends differ in length (a tapering
   /// strip): the curve and the pieces that keep the rows between within the Jacobian ratio.
@@ -232,6 +241,23 @@ void tieFacingSides(const Sheet& sheet, const PatchSide& a, const PatchSide& b,
     addStations(sheet, sheet.junctionCurves[b.curves[0]], a.curves, ties);
 }
 
+/// The largest distance of a point of polyline `a` from polyline `b`, or of `b` from `a`.
+double widestApart(const std::vector<std::array<double, 3>>& a,
+                   const std::vector<std::array<double, 3>>& b) {
+  double widest = 0.0;
+  for (const auto* from : {&a, &b}) {
+    const auto& to = from == &a ? b : a;
+    if (to.size() < 2) continue;
+    const extract::PolylineParam line(to, false);
+    for (const auto& p : *from) {
+      double away = 0.0;
+      line.closestParam({p[0], p[1], p[2]}, away);
+      widest = std::max(widest, away);
+    }
+  }
+  return widest;
+}
+
 /// Adds to `ties` the sides facing each other across the sheet's one-loop patches where both are
 /// made of whole junction curves (tieFacingSides): the opposite sides of a four-sided patch, and
 /// the two long sides of a three-sided one (a strip running into a tip: the sides meeting at the
@@ -275,10 +301,19 @@ void tieOppositeCurves(const Sheet& sheet, const QualitySettings& criteria, Curv
         tieFacingSides(sheet, *a, *b, criteria, ties);
       continue;
     }
-    std::array<CurveSide, 4> patchSides;
+    TiedPatch tied;
+    std::array<std::vector<std::array<double, 3>>, 4> sidePoints;
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (sides[k]) tied.sides[k] = sides[k]->keys;
+      for (std::size_t i = corners[k];; i = (i + 1) % loop.size()) {
+        sidePoints[k].push_back(loopPoints[i]);
+        if (i == corners[(k + 1) % 4]) break;
+      }
+    }
     for (std::size_t k = 0; k < 4; ++k)
-      if (sides[k]) patchSides[k] = sides[k]->keys;
-    ties.patches.push_back(std::move(patchSides));
+      tied.extent[k] = std::max(sides[k] ? sides[k]->length : 0.0,
+                                widestApart(sidePoints[(k + 1) % 4], sidePoints[(k + 3) % 4]));
+    ties.patches.push_back(std::move(tied));
     for (std::size_t k = 0; k < 2; ++k)
       if (sides[k] && sides[k + 2]) tieFacingSides(sheet, *sides[k], *sides[k + 2], criteria, ties);
   }
@@ -425,34 +460,46 @@ SeamSampling seamSampling(const std::vector<FeModel>& models, const std::vector<
     }
   };
   matchPairs();
-  // Then each side of a four-sided patch whose pieces are longer than the aspect limit times
-  // the pieces of a side across it that has two or more (a patch two elements across, where a
-  // web stands on the middle of its end) gets as many as that limit asks, and each curve along a
-  // tapering strip as many as keep its rows' trapezoids within the Jacobian ratio (taperPieces),
-  // by the counts matched so far (once: a raise does not raise others' bounds), and the pairs
-  // are matched again.
-  const double aspect = settings.optimizeSettings.quality.maxAspectRatio;
-  std::vector<std::pair<CurveSide, long>> raises;
-  for (const CurveTies& ties : perPlan)
-    for (const auto& patch : ties.patches)
-      for (std::size_t k = 0; k < 4; ++k) {
-        if (patch[k].empty() || !known(patch[k])) continue;
-        double across = HUGE_VAL;
-        for (const std::size_t j : {(k + 1) % 4, (k + 3) % 4})
-          if (!patch[j].empty() && known(patch[j]) && sum(patch[j]) > 1)
-            across = std::min(across, length(patch[j]) / double(sum(patch[j])));
-        if (!std::isfinite(across)) continue;
-        const long needed = long(std::ceil(length(patch[k]) / (aspect * across) - 1e-9));
-        if (needed > sum(patch[k])) raises.emplace_back(patch[k], needed - sum(patch[k]));
-      }
+  // Then each curve along a tapering strip gets as many pieces as keep its rows' trapezoids
+  // within the Jacobian ratio (taperPieces), and each side of a four-sided patch whose pieces are
+  // longer than the aspect limit times the pieces of a side across it that has two or more (a
+  // patch two elements across, where a web stands on the middle of its end; a rib web taller in
+  // its middle than its ends are long) as many as that limit asks, by the counts matched so far;
+  // the pairs are matched again after each pass of raises, until no side asks for more or
+  // kMatchingPasses.
   std::map<NodeEdge, long> tapers;  // per curve, the most pieces any patch asks
   for (const CurveTies& ties : perPlan)
     for (const auto& [key, pieces] : ties.tapers)
       if (count.count(key)) tapers[key] = std::max(tapers[key], pieces);
+  bool raised = false;
   for (const auto& [key, pieces] : tapers)
-    if (pieces > count.at(key)) raises.emplace_back(CurveSide{key}, pieces - count.at(key));
-  for (const auto& [side, more] : raises) raise(side, more);
-  if (!raises.empty()) matchPairs();
+    if (pieces > count.at(key)) {
+      raise(CurveSide{key}, pieces - count.at(key));
+      raised = true;
+    }
+  if (raised) matchPairs();
+  const double aspect = settings.optimizeSettings.quality.maxAspectRatio;
+  for (int pass = 0; pass < kMatchingPasses; ++pass) {
+    std::vector<std::pair<const CurveSide*, long>> raises;
+    for (const CurveTies& ties : perPlan)
+      for (const TiedPatch& patch : ties.patches)
+        for (std::size_t k = 0; k < 4; ++k) {
+          const CurveSide& side = patch.sides[k];
+          if (side.empty() || !known(side)) continue;
+          double across = HUGE_VAL;
+          for (const std::size_t j : {(k + 1) % 4, (k + 3) % 4}) {
+            const CurveSide& next = patch.sides[j];
+            if (!next.empty() && known(next) && sum(next) > 1)
+              across = std::min(across, length(next) / double(sum(next)));
+          }
+          if (!std::isfinite(across)) continue;
+          const long needed = long(std::ceil(patch.extent[k] / (aspect * across) - 1e-9));
+          if (needed > sum(side)) raises.emplace_back(&side, needed - sum(side));
+        }
+    if (raises.empty()) break;
+    for (const auto& [side, more] : raises) raise(*side, more);
+    matchPairs();
+  }
   SeamSampling sampling;
   for (const auto& [key, curve] : curves)
     if (count.at(key) > curve.pieces) sampling.counts[key] = count.at(key);

@@ -8,11 +8,13 @@
 // are as many curves whose joints face each other, each curve gets the count of the one across
 // it; else the side with fewer pieces gets more on its curve with the longest pieces until the
 // totals match, and a single curve facing several gets stations, nodes facing their joints,
-// each stretch with the count of the curve across. From the matched counts, once: a side whose
-// pieces are longer than the aspect limit times the pieces across it (two or more across) gets
-// that many more, and a curve between rungs of different lengths (a tapering strip) as many as
-// keep its rows' trapezoids within the Jacobian ratio. And where a narrow sheet narrows into a
-// sharp corner, the junction curves along the two sides of that wedge get pieces shrinking
+// each stretch with the count of the curve across. Then a curve between rungs of different
+// lengths (a tapering strip) gets as many pieces as keep its rows' trapezoids within the
+// Jacobian ratio, and a side of a four-sided patch whose pieces are longer than the aspect limit
+// times the pieces across it (two or more across; for the sides across a strip, its longest
+// rung counts: a rib web taller in its middle than at its ends) gets that many more, pass after
+// pass with the pairs matched again, until no side asks for more. And where a narrow sheet narrows
+// into a sharp corner, the junction curves along the two sides of that wedge get pieces shrinking
 // toward it (junction_nodes.h), on every part that has them. Internal to src/pipeline.
 #pragma once
 
