@@ -781,6 +781,19 @@ TEST(DeckAssembly, OnlyTheGridFieldsOfANastranCardAreHardPoints) {
   EXPECT_EQ(hardPointNodes(model, all), (std::unordered_set<Id>{1, 2}));
 }
 
+TEST(DeckAssembly, TheGridsOfSupportsAreHardPointsButNotTheirComponents) {
+  // SUPORT1 set 7 on grids 3 (components 12) and 4 (components 6), SUPORT on grid 5 (components
+  // 1): a free body's supports stay on its structure. The set ID 7 and the components 1, 6
+  // are grid IDs of the plate too, but no grids of these cards.
+  const auto dir = scratchDir("assembly_nastran_supports");
+  writeText(dir / "in.bdf", nastranPlateDeck("SUPORT1        7       3      12       4       6\n"
+                                             "SUPORT         5       1\n"));
+  const FeModel model = readDeck(dir / "in.bdf");
+  std::unordered_set<Id> all;
+  for (const Node& node : model.nodes) all.insert(node.id);
+  EXPECT_EQ(hardPointNodes(model, all), (std::unordered_set<Id>{3, 4, 5}));
+}
+
 TEST(DeckAssembly, AbaqusNsetAndBoundary) {
   const auto dir = scratchDir("assembly_abaqus");
   writeText(dir / "in.inp",

@@ -41,7 +41,7 @@
 //              *ELEMENT_MASS, *ELEMENT_BEAM, *ELEMENT_DISCRETE, *ELEMENT_SPH
 //     Nastran  SPC, SPCD, SPC1, SET1, RBE2, RBE3, CONM2, CBUSH, CBAR, CBEAM, CROD, CONROD, CELAS1,
 //              CELAS2, CDAMP1, CDAMP2, CWELD (GS, GA, GB), PLOTEL, FORCE, MOMENT, PLOAD4 (G1, G3),
-//              CORD1R/C/S, CHEXA, CPENTA, CTETRA
+//              CORD1R/C/S, CHEXA, CPENTA, CTETRA, SUPORT, SUPORT1 (grids, not components)
 //     Abaqus   *NSET, *BOUNDARY, *CLOAD, *ELEMENT (non-shell types)
 //   A rewritten field keeps its columns (fixed format: right-aligned in the field's width;
 //   free format: the token replaced); every other byte of the deck stays as it was.
@@ -82,7 +82,7 @@
 //   containing _NODE, except those naming sets, parts or contacts: a name (without _TITLE or
 //   _ID) ending in _SET, _GENERAL or _ADD or holding _SET_, ending in _RIGID, *CONTACT_...,
 //   *CONSTRAINED_RIGID_BODIES and the shell keywords read for their shell IDs; Nastran cards
-//   starting with C or R, MPC, ASET, OMIT, SUPORT, FORCE1/2, MOMENT1/2, TEMP; Abaqus *EQUATION,
+//   starting with C or R, MPC, ASET, OMIT, FORCE1/2, MOMENT1/2, TEMP; Abaqus *EQUATION,
 //   *MPC, *INITIAL CONDITIONS, *KINEMATIC COUPLING) is listed in UnmappedReference and its node is
 //   kept (detached from the new mesh), never dropped. Such a scan cannot tell a node ID from
 //   another number that happens to be equal, so it may list false alarms; it never changes the
@@ -179,9 +179,9 @@ std::unordered_set<Id> solidElementNodes(const FeModel& model,
 /// one (see the list at the top of the file): element ends (beams, discrete elements, masses,
 /// CBAR, CROD, CBUSH, CONM2, ...), rigid elements and constraints (RBE2, RBE3, spot welds, nodal
 /// rigid bodies, extra nodes), point loads and boundary conditions (FORCE, MOMENT, SPC, *CLOAD,
-/// *BOUNDARY...), history nodes and the points of CORD1x systems. Node sets and per-node data
-/// (*SET_NODE..., *INITIAL_..., *NSET, SET1, SPC1, ASET1, OMIT1, SUPORT1, TEMP) describe regions,
-/// not points, and ranges cannot be told apart: neither makes a hard point. Deterministic.
+/// *BOUNDARY..., SUPORT, SUPORT1), history nodes and the points of CORD1x systems. Node sets and
+/// per-node data (*SET_NODE..., *INITIAL_..., *NSET, SET1, SPC1, ASET1, OMIT1, TEMP) describe
+/// regions, not points, and ranges cannot be told apart: neither makes a hard point. Deterministic.
 std::unordered_set<Id> hardPointNodes(const FeModel& model,
                                       const std::unordered_set<Id>& candidates);
 

@@ -15,8 +15,8 @@ namespace {
 bool isRegionKeyword(const std::string& keyword) {
   for (const std::string_view prefix : {"*SET_", "*INITIAL_", "*NSET"})
     if (keyword.compare(0, prefix.size(), prefix) == 0) return true;
-  for (const std::string_view name : {"SET1", "SET3", "SPC1", "ASET1", "BSET1", "CSET1", "QSET1",
-                                      "OMIT1", "SUPORT1", "TEMP", "TEMPD"})
+  for (const std::string_view name :
+       {"SET1", "SET3", "SPC1", "ASET1", "BSET1", "CSET1", "QSET1", "OMIT1", "TEMP", "TEMPD"})
     if (keyword == name) return true;
   return false;
 }

@@ -15,18 +15,22 @@ namespace {
 namespace nastran = io::nastran;
 
 /// A card read field by field: data fields (0 = the first after the name) holding grid IDs, and
-/// optionally every integer field from `allFrom` on.
+/// optionally every integer field from `allFrom` on, or every `stride`-th (pairs of a grid and
+/// its components).
 struct CardSpec {
   std::string_view name;
   std::array<std::int8_t, 6> fields;  ///< -1 ends the list
   std::int8_t allFrom = -1;
   NodeRole role = NodeRole::Point;  ///< what its grid references mean
+  std::int8_t stride = 1;
 };
 
 constexpr CardSpec kCards[] = {
     {"SPC", {1, 4, -1}},
     {"SPCD", {1, 4, -1}},
     {"SPC1", {-1}, 2, NodeRole::Member},
+    {"SUPORT", {-1}, 0, NodeRole::Point, 2},   // grid, components, grid, components, ...
+    {"SUPORT1", {-1}, 1, NodeRole::Point, 2},  // the same after its set ID
     {"SET1", {-1}, 1, NodeRole::Member},
     {"RBE2", {1, -1}, 3},
     {"CONM2", {1, -1}},
@@ -56,9 +60,8 @@ constexpr CardSpec kCards[] = {
 /// Cards not read field by field whose data may still name grids (their first field, the card's
 /// own ID, is not scanned).
 bool mayNameGrids(const std::string& name) {
-  static constexpr std::string_view kNames[] = {"MPC",    "ASET",    "ASET1",   "OMIT",
-                                                "OMIT1",  "SUPORT",  "SUPORT1", "FORCE1",
-                                                "FORCE2", "MOMENT1", "MOMENT2", "TEMP"};
+  static constexpr std::string_view kNames[] = {"MPC",    "ASET",   "ASET1",   "OMIT",    "OMIT1",
+                                                "FORCE1", "FORCE2", "MOMENT1", "MOMENT2", "TEMP"};
   for (std::string_view known : kNames)
     if (name == known) return true;
   if (name.compare(0, 4, "CORD") == 0) return false;  // CORD2x: coordinates and system IDs
@@ -129,7 +132,8 @@ class CardScanner {
       gridFields.push_back(static_cast<std::size_t>(k));
     }
     if (spec->allFrom >= 0)
-      for (std::size_t k = static_cast<std::size_t>(spec->allFrom); k < fields.size(); ++k)
+      for (std::size_t k = static_cast<std::size_t>(spec->allFrom); k < fields.size();
+           k += static_cast<std::size_t>(spec->stride))
         gridFields.push_back(k);
     if (card.name == "RBE3") addRbe3Grids(fields, gridFields);
     for (const std::size_t k : gridFields) {
