@@ -769,29 +769,34 @@ TEST(DeckAssembly, AbaqusElementSetsAndDloadsCoverTheSameRegionOfTheNewMesh) {
       << out;
 }
 
-TEST(DeckAssembly, OnlyTheGridFieldsOfANastranCardAreHardPoints) {
-  // CONM2 5 on grid 1, SPC 3 on grid 2: the element ID 5 and the set ID 3 are also grid IDs of
-  // the plate, but no grids of these cards.
-  const auto dir = scratchDir("assembly_nastran_grid_fields");
-  writeText(dir / "in.bdf", nastranPlateDeck("CONM2          5       1             1.0\n"
-                                             "SPC            3       2     123\n"));
+/// The hard points (hardPointNodes over all its grids) of the plate of nastranPlateDeck with
+/// `cards`, written in a scratch folder `name`.
+std::unordered_set<Id> plateHardPoints(const std::string& name, const std::string& cards) {
+  const auto dir = scratchDir(name);
+  writeText(dir / "in.bdf", nastranPlateDeck(cards));
   const FeModel model = readDeck(dir / "in.bdf");
   std::unordered_set<Id> all;
   for (const Node& node : model.nodes) all.insert(node.id);
-  EXPECT_EQ(hardPointNodes(model, all), (std::unordered_set<Id>{1, 2}));
+  return hardPointNodes(model, all);
+}
+
+TEST(DeckAssembly, OnlyTheGridFieldsOfANastranCardAreHardPoints) {
+  // CONM2 5 on grid 1, SPC 3 on grid 2: the element ID 5 and the set ID 3 are also grid IDs of
+  // the plate, but no grids of these cards.
+  EXPECT_EQ(plateHardPoints("assembly_nastran_grid_fields",
+                            "CONM2          5       1             1.0\n"
+                            "SPC            3       2     123\n"),
+            (std::unordered_set<Id>{1, 2}));
 }
 
 TEST(DeckAssembly, TheGridsOfSupportsAreHardPointsButNotTheirComponents) {
   // SUPORT1 set 7 on grids 3 (components 12) and 4 (components 6), SUPORT on grid 5 (components
   // 1): a free body's supports stay on its structure. The set ID 7 and the components 1, 6
   // are grid IDs of the plate too, but no grids of these cards.
-  const auto dir = scratchDir("assembly_nastran_supports");
-  writeText(dir / "in.bdf", nastranPlateDeck("SUPORT1        7       3      12       4       6\n"
-                                             "SUPORT         5       1\n"));
-  const FeModel model = readDeck(dir / "in.bdf");
-  std::unordered_set<Id> all;
-  for (const Node& node : model.nodes) all.insert(node.id);
-  EXPECT_EQ(hardPointNodes(model, all), (std::unordered_set<Id>{3, 4, 5}));
+  EXPECT_EQ(plateHardPoints("assembly_nastran_supports",
+                            "SUPORT1        7       3      12       4       6\n"
+                            "SUPORT         5       1\n"),
+            (std::unordered_set<Id>{3, 4, 5}));
 }
 
 TEST(DeckAssembly, AbaqusNsetAndBoundary) {
