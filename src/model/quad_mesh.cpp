@@ -13,31 +13,55 @@
 
 namespace voxremesh {
 
+namespace {
+
+/// Appends `shell` to `mesh` as a face, adding the points of its nodes not in `pointOfNode` yet
+/// (node ID -> mesh point). Throws std::invalid_argument naming the shell and node when the model
+/// does not define the node.
+void appendShell(const FeModel& model, const std::unordered_map<Id, std::size_t>& nodeIndex,
+                 const Shell& shell, QuadMesh& mesh,
+                 std::unordered_map<Id, CornerIndex>& pointOfNode) {
+  std::array<CornerIndex, 4> face{kNoCorner, kNoCorner, kNoCorner, kNoCorner};
+  for (int c = 0; c < shell.nodeCount; ++c) {
+    const Id node = shell.nodes[static_cast<std::size_t>(c)];
+    auto [it, inserted] =
+        pointOfNode.try_emplace(node, static_cast<CornerIndex>(mesh.points.size()));
+    if (inserted) {
+      const auto found = nodeIndex.find(node);
+      if (found == nodeIndex.end()) {
+        throw std::invalid_argument("shell " + std::to_string(shell.id) + " names node " +
+                                    std::to_string(node) + ", which the model does not define");
+      }
+      mesh.points.push_back(model.nodes[found->second].xyz);
+    }
+    face[static_cast<std::size_t>(c)] = it->second;
+  }
+  mesh.faces.push_back(face);
+}
+
+}  // namespace
+
 QuadMesh quadMeshFromModel(const FeModel& model, Id part) {
   const std::unordered_map<Id, std::size_t> nodeIndex = model.nodeIndex();
   QuadMesh mesh;
   mesh.part = part;
   std::unordered_map<Id, CornerIndex> pointOfNode;
-  for (const Shell& shell : model.shells) {
-    if (part != 0 && shell.part != part) continue;
-    std::array<CornerIndex, 4> face{kNoCorner, kNoCorner, kNoCorner, kNoCorner};
-    for (int c = 0; c < shell.nodeCount; ++c) {
-      const Id node = shell.nodes[static_cast<std::size_t>(c)];
-      auto [it, inserted] =
-          pointOfNode.try_emplace(node, static_cast<CornerIndex>(mesh.points.size()));
-      if (inserted) {
-        const auto found = nodeIndex.find(node);
-        if (found == nodeIndex.end()) {
-          throw std::invalid_argument("shell " + std::to_string(shell.id) + " names node " +
-                                      std::to_string(node) + ", which the model does not define");
-        }
-        mesh.points.push_back(model.nodes[found->second].xyz);
-      }
-      face[static_cast<std::size_t>(c)] = it->second;
-    }
-    mesh.faces.push_back(face);
-  }
+  for (const Shell& shell : model.shells)
+    if (part == 0 || shell.part == part) appendShell(model, nodeIndex, shell, mesh, pointOfNode);
   return mesh;
+}
+
+std::map<Id, QuadMesh> quadMeshesFromModel(const FeModel& model, const std::vector<Id>& parts) {
+  const std::unordered_map<Id, std::size_t> nodeIndex = model.nodeIndex();
+  std::map<Id, QuadMesh> meshes;
+  std::map<Id, std::unordered_map<Id, CornerIndex>> pointOfNode;
+  for (const Shell& shell : model.shells) {
+    if (!std::binary_search(parts.begin(), parts.end(), shell.part)) continue;
+    QuadMesh& mesh = meshes[shell.part];
+    mesh.part = shell.part;
+    appendShell(model, nodeIndex, shell, mesh, pointOfNode[shell.part]);
+  }
+  return meshes;
 }
 
 FeModel modelFromQuadMesh(const QuadMesh& mesh, Id part) {

@@ -1,6 +1,5 @@
 // deckSeams: the seams of a deck (pipeline.h).
 #include <algorithm>
-#include <array>
 #include <map>
 #include <unordered_map>
 #include <utility>
@@ -8,6 +7,7 @@
 
 #include "pipeline/remesh_part.h"
 #include "voxremesh/pipeline.h"
+#include "voxremesh/quad_mesh.h"
 #include "voxremesh/quality.h"
 
 namespace voxremesh {
@@ -17,27 +17,6 @@ namespace {
 /// A node closer than this share of the shorter median edge of two parts to an edge of the other
 /// lies on that edge.
 constexpr double kOnEdgeShare = 0.005;
-
-/// The meshes of the listed parts (ascending IDs), built in one pass over the deck's shells.
-std::map<Id, QuadMesh> partMeshes(const FeModel& deck, const std::vector<Id>& parts) {
-  const std::unordered_map<Id, std::size_t> nodeIndex = deck.nodeIndex();
-  std::map<Id, QuadMesh> meshes;
-  std::map<Id, std::unordered_map<Id, CornerIndex>> pointOfNode;
-  for (const Shell& shell : deck.shells) {
-    if (!std::binary_search(parts.begin(), parts.end(), shell.part)) continue;
-    QuadMesh& mesh = meshes[shell.part];
-    std::unordered_map<Id, CornerIndex>& points = pointOfNode[shell.part];
-    std::array<CornerIndex, 4> face{kNoCorner, kNoCorner, kNoCorner, kNoCorner};
-    for (int c = 0; c < shell.nodeCount; ++c) {
-      const Id node = shell.nodes[std::size_t(c)];
-      const auto [it, added] = points.try_emplace(node, CornerIndex(mesh.points.size()));
-      if (added) mesh.points.push_back(deck.nodes[nodeIndex.at(node)].xyz);
-      face[std::size_t(c)] = it->second;
-    }
-    mesh.faces.push_back(face);
-  }
-  return meshes;
-}
 
 /// The nodes lying inside an edge of another part they share a seam with (see DeckSeams).
 std::size_t hangingNodes(const FeModel& deck,
@@ -49,7 +28,7 @@ std::size_t hangingNodes(const FeModel& deck,
   }
   std::sort(parts.begin(), parts.end());
   parts.erase(std::unique(parts.begin(), parts.end()), parts.end());
-  const std::map<Id, QuadMesh> meshes = partMeshes(deck, parts);
+  const std::map<Id, QuadMesh> meshes = quadMeshesFromModel(deck, parts);
   std::map<Id, double> median;
   for (const auto& [part, mesh] : meshes) median[part] = medianEdgeLength(mesh);
   std::size_t hanging = 0;
