@@ -15,6 +15,8 @@
 #include "extract/sheet_patches.h"
 #include "geometry/vec3.h"
 #include "pipeline/remesh_part.h"
+#include "support/test_support.h"
+#include "voxremesh/deck_compare.h"
 #include "voxremesh/pipeline.h"
 #include "voxremesh/quality.h"
 
@@ -81,6 +83,27 @@ QuadMesh meshStrip(const FeModel& model, Id part, double spacing, double toleran
   return extract::meshNarrowSheet(sheets.front(), surface, reference, junctions, settings);
 }
 
+/// A panel 40 mm long and 10 mm wide (10 x 4 elements of 4 x 2.5) bent across round a cylinder
+/// of radius `radius`, with `endPlates` plates 4 mm long at its two ends (parts 2 and 3, bent
+/// alike, so that its ends are seams); `panelArea` receives the panel's area.
+FeModel curvedPanel(double& panelArea, double radius = 12.5, bool endPlates = false) {
+  FeModel model = strip(10, 4, 4.0, 2.5);
+  for (int j = 0; j <= 4 && endPlates; ++j) {
+    test::addNode(model, 1000 + j, -4.0, 2.5 * j);
+    test::addNode(model, 2000 + j, 44.0, 2.5 * j);
+    if (j == 4) continue;
+    test::addShell(model, 1000 + j, 2, {1000 + j, 1 + 11 * j, 12 + 11 * j, 1001 + j});
+    test::addShell(model, 2000 + j, 3, {11 + 11 * j, 2000 + j, 2001 + j, 22 + 11 * j});
+  }
+  for (Node& node : model.nodes) {
+    const double angle = node.xyz[1] / radius;
+    node.xyz[1] = radius * std::sin(angle);
+    node.xyz[2] = radius * (1.0 - std::cos(angle));
+  }
+  panelArea = 4.0 * 40.0 * 2.0 * radius * std::sin(2.5 / (2.0 * radius));
+  return model;
+}
+
 std::size_t triangleCount(const QuadMesh& mesh) {
   std::size_t count = 0;
   for (const auto& face : mesh.faces) count += cornerCount(face) == 3;
@@ -123,14 +146,8 @@ TEST(NarrowSheet, ARowAcrossASheetCurvedAcrossIsRefusedWhereItsChordsCutTheArea)
   // A panel 40 mm long and 10 mm wide bent across round a cylinder of radius 12.5, meshed at
   // 9 mm: a chord straight across lies 0.99 mm from the arc, within the 1.125 mm tolerance, but
   // is 2.7 % shorter; with the sagitta limit no row is made of such chords.
-  FeModel model = strip(10, 4, 4.0, 2.5);
-  const double radius = 12.5;
-  for (Node& node : model.nodes) {
-    const double angle = node.xyz[1] / radius;
-    node.xyz[1] = radius * std::sin(angle);
-    node.xyz[2] = radius * (1.0 - std::cos(angle));
-  }
-  const double panelArea = 4.0 * 40.0 * 2.0 * radius * std::sin(2.5 / (2.0 * radius));
+  double panelArea = 0.0;
+  const FeModel model = curvedPanel(panelArea);
   const QuadMesh chords = meshStrip(model, 1, 9.0, 1.125);
   EXPECT_LT(area(chords), 0.99 * panelArea);
   try {
@@ -138,6 +155,49 @@ TEST(NarrowSheet, ARowAcrossASheetCurvedAcrossIsRefusedWhereItsChordsCutTheArea)
     EXPECT_GT(area(rows), 0.995 * panelArea);
   } catch (const extract::NarrowSheetRefusal&) {
   }
+}
+
+TEST(NarrowSheet, AStripCurvedAcrossIsNoGridWhereItsQuadsCutTheArea) {
+  // The panel of the test above round a radius of 10, between plates at its ends, meshed at 5 mm
+  // with the seams' nodes 5 mm apart: two pieces across its ends, so a grid would be two quads
+  // across, each a chord across 0.5 rad of arc, within the tolerance but 0.8 % short of the
+  // panel's area. With the sagitta share, the mesh keeps the area within half the limit, or there
+  // is none.
+  double panelArea = 0.0;
+  const FeModel model = curvedPanel(panelArea, 10.0, true);
+  try {
+    const QuadMesh mesh = meshStrip(model, 1, 5.0, 1.125, 5.0, {}, kChordSagittaShare);
+    EXPECT_GT(area(mesh), (1.0 - 0.5 * kAreaTolerance) * panelArea);
+  } catch (const extract::NarrowSheetRefusal&) {
+  }
+}
+
+TEST(NarrowSheet, AStripBentAlongItsMiddleIsAGridWhoseEdgesCrossTheCrease) {
+  // 12 x 3 mm in 0.5 mm elements, bent by 16 degrees along y = 1.5, between plates at its ends
+  // (parts 2 and 3, whose seams get nodes 1 mm apart), meshed at 1 mm: a grid of 12 x 3 quads,
+  // its middle row across the crease. Each edge across the crease lies 7 % of its length from
+  // it, over the sagitta share, but only that row loses area (1 - cos 8 degrees, 1 % of a third
+  // of the strip): the grid keeps the strip's area within half the area limit.
+  FeModel model = strip(24, 6, 0.5, 0.5);
+  for (int j = 0; j <= 6; ++j) {
+    test::addNode(model, 1000 + j, -0.5, 0.5 * j);
+    test::addNode(model, 2000 + j, 12.5, 0.5 * j);
+  }
+  for (int j = 0; j < 6; ++j) {
+    test::addShell(model, 1000 + j, 2, {1000 + j, 1 + 25 * j, 26 + 25 * j, 1001 + j});
+    test::addShell(model, 2000 + j, 3, {25 + 25 * j, 2000 + j, 2001 + j, 50 + 25 * j});
+  }
+  const double bend = 16.0 * M_PI / 180.0;
+  for (Node& node : model.nodes)
+    if (node.xyz[1] > 1.5) {
+      const double away = node.xyz[1] - 1.5;
+      node.xyz[1] = 1.5 + away * std::cos(bend);
+      node.xyz[2] = away * std::sin(bend);
+    }
+  const QuadMesh mesh = meshStrip(model, 1, 1.0, 0.1, 0.0, {}, kChordSagittaShare);
+  EXPECT_EQ(mesh.faces.size(), 36u);
+  EXPECT_EQ(triangleCount(mesh), 0u);
+  EXPECT_GT(area(mesh), (1.0 - 0.5 * kAreaTolerance) * 36.0);
 }
 
 TEST(NarrowSheet, ATaperedEndStillGetsQuadsWhereTheNodesFace) {
@@ -439,6 +499,50 @@ TEST(MidpointPatch, ASixSidedPatchGetsAGridRoundEachCorner) {
     EXPECT_NEAR(quality.minAngleDeg, 60.0, 1e-6);
     EXPECT_NEAR(quality.maxAngleDeg, 120.0, 1e-6);
   }
+}
+
+TEST(MappedPatch, AnLShapedPatchIsTwoGridsEitherSideOfACutFromItsReflexCorner) {
+  // An L of arms 2 wide (6 x 6 outside) with nodes 1 apart: no grid (six corners) and no midpoint
+  // split (its sides' counts do not pair up round it); cut from its inner corner (2, 2) to (0, 2)
+  // with a node at (1, 2), it is a 2 x 4 grid above and a 6 x 2 grid below.
+  QuadMesh surface;
+  surface.points = {{0, 0, 0}, {6, 0, 0}, {6, 2, 0}, {2, 2, 0}, {2, 6, 0}, {0, 6, 0}, {0, 2, 0}};
+  surface.faces = {{0, 1, 2, 6}, {6, 3, 4, 5}};
+  const std::vector<std::array<double, 3>> corners{{0, 0, 0}, {6, 0, 0}, {6, 2, 0},
+                                                   {2, 2, 0}, {2, 6, 0}, {0, 6, 0}};
+  std::vector<extract::LoopNode> nodes;
+  for (std::size_t k = 0; k < corners.size(); ++k) {
+    const auto& a = corners[k];
+    const auto& b = corners[(k + 1) % corners.size()];
+    const int pieces = int(std::lround(geom::distance(a, b)));
+    for (int j = 0; j < pieces; ++j) {
+      const double t = double(j) / pieces;
+      nodes.push_back({double(nodes.size()),
+                       {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), 0.0},
+                       PointRole::Junction,
+                       true});
+    }
+  }
+  std::vector<std::array<double, 3>> points;
+  for (const extract::LoopNode& node : nodes) points.push_back(node.point);
+  EXPECT_EQ(extract::reflexCorners(points), std::vector<std::size_t>{12});  // (2, 2)
+  const ReferenceSurface reference(surface);
+  const auto up = [](const std::array<double, 3>&) { return std::array<double, 3>{0, 0, 1}; };
+  const auto grids = extract::lShapedPatch(nodes, reference, up, 0.1, kChordSagittaShare);
+  ASSERT_TRUE(grids.has_value());
+  EXPECT_EQ(grids->quads.size(), 20u);
+  // The cut's node, then the grids' inner nodes: 3 above, 5 below.
+  ASSERT_EQ(grids->inner.size(), 9u);
+  EXPECT_NEAR(geom::distance(grids->inner[0], {1.0, 2.0, 0.0}), 0.0, 1e-12);
+  QuadMesh mesh;
+  for (const extract::LoopNode& node : grids->loop) mesh.points.push_back(node.point);
+  for (const auto& p : grids->inner) mesh.points.push_back(p);
+  for (const auto& q : grids->quads) mesh.faces.push_back({q[0], q[1], q[2], q[3]});
+  EXPECT_NEAR(area(mesh), 20.0, 1e-9);
+  for (const geom::Vec3& normal : normals(mesh)) EXPECT_GT(normal[2], 0.0);
+  for (const ElementQuality& quality : elementQualities(mesh))
+    EXPECT_NEAR(quality.minAngleDeg, 90.0, 1e-6);
+  EXPECT_FALSE(extract::midpointPatch(nodes, reference, up, 0.1, 0.0).has_value());
 }
 
 TEST(MidpointPatch, FourSidesWithDifferentCountsOppositeHaveNoSplit) {

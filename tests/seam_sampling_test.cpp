@@ -225,3 +225,50 @@ TEST(SeamSampling, AStripTallerInItsMiddleThanAtItsEndsGetsRowsWithinTheAspectLi
   EXPECT_EQ(web.status, PartStatus::Remeshed) << web.reason;
   EXPECT_EQ(web.acceptance.failing, 0u) << web.reason;
 }
+
+TEST(SeamSampling, TheSidesOfAnLShapedStripAddUpAcrossItSoThatItIsTwoGrids) {
+  // An L-shaped strip (part 1, z = 0) with arms 2 wide, 20 long outside and 18 inside, in 1 mm
+  // quads, every side a seam of its own: panels in its inner corner (parts 2 and 7, meeting on
+  // the diagonal from its inner corner), plates below and left of it (parts 3 and 4, meeting
+  // beyond its outer corner) and at its arms' ends (parts 5 and 6). At size 4 the inner sides
+  // would get 5 pieces (4.5 rounded up), the outer ones 5 and the ends 1: 5 + 1 against 5, no
+  // two grids. The two sides along each direction are tied to the side across from them; cut
+  // from its inner corner the strip is two grids of quads.
+  FeModel model;
+  const auto id = [](int i, int j) { return Id(1 + (i + 6) + 100 * (j + 6)); };
+  const auto partAt = [](int i, int j) -> Id {  // the part of the unit square at (i, j)
+    if ((j >= 0 && j < 2 && i >= 0 && i < 20) || (i >= 0 && i < 2 && j >= 0 && j < 20)) return 1;
+    if (i >= 2 && i < 20 && j >= 2 && j < 20) return i > j ? 2 : i < j ? 7 : 0;  // 0: split
+    if (j < 0 && i < 20) return 3;  // the corner too, so that parts 3 and 4 share a seam
+    if (i < 0 && j >= 0 && j < 20) return 4;
+    if (i >= 20 && j >= 0 && j < 2) return 5;
+    if (j >= 20 && i >= 0 && i < 2) return 6;
+    return -1;
+  };
+  std::set<Id> used;
+  const auto node = [&](int i, int j) {
+    if (used.insert(id(i, j)).second) test::addNode(model, id(i, j), i, j);
+    return id(i, j);
+  };
+  Id shell = 1;
+  for (int j = -6; j < 26; ++j)
+    for (int i = -6; i < 26; ++i) {
+      const Id part = partAt(i, j);
+      if (part > 0)
+        test::addShell(model, shell++, part,
+                       {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)});
+      if (part != 0) continue;
+      test::addShell(model, shell++, 2, {node(i, j), node(i + 1, j), node(i + 1, j + 1)});
+      test::addShell(model, shell++, 7, {node(i, j), node(i + 1, j + 1), node(i, j + 1)});
+    }
+  RemeshSettings settings;
+  settings.targetSize = 4.0;
+  const RemeshReport report = remeshDeck(model, settings);
+  const RemeshedPart* strip = nullptr;
+  for (const RemeshedPart& part : report.parts)
+    if (part.plan.part == 1) strip = &part;
+  ASSERT_NE(strip, nullptr);
+  EXPECT_EQ(strip->status, PartStatus::Remeshed) << strip->reason;
+  EXPECT_EQ(strip->acceptance.failing, 0u) << strip->reason;
+  EXPECT_EQ(strip->trias, 0u) << strip->reason;
+}

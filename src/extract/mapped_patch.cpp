@@ -6,7 +6,6 @@
 #include <limits>
 
 #include "extract/polygon_quads.h"
-#include "geometry/chord_limit.h"
 #include "geometry/vec3.h"
 
 namespace voxremesh::extract {
@@ -26,6 +25,20 @@ std::vector<std::size_t> loopCorners(const std::vector<std::array<double, 3>>& l
       corners.push_back(i);
   }
   return corners;
+}
+
+std::vector<std::size_t> reflexCorners(const std::vector<std::array<double, 3>>& loop) {
+  const std::size_t n = loop.size();
+  Vec3 centre{0.0, 0.0, 0.0};
+  for (const Vec3& p : loop) centre = centre + p * (1.0 / double(n));
+  Vec3 normal{0.0, 0.0, 0.0};  // Newell's: twice the loop's vector area
+  for (std::size_t i = 0; i < n; ++i)
+    normal = normal + cross(loop[i] - centre, loop[(i + 1) % n] - centre);
+  std::vector<std::size_t> reflex;
+  for (const std::size_t c : loopCorners(loop))
+    if (dot(cross(loop[c] - loop[(c + n - 1) % n], loop[(c + 1) % n] - loop[c]), normal) < 0.0)
+      reflex.push_back(c);
+  return reflex;
 }
 
 namespace {
@@ -118,26 +131,51 @@ struct GridSides {
 };
 
 /// True when the quad is convex, agrees with the surface normal and stays within `tolerance` of
-/// the surface at its centre and edge midpoints, and, where `sagittaShare` is positive, within
-/// that share of the edge's length at an edge's midpoint and of the longer diagonal's at the
-/// centre (a quad across a curved surface then keeps its area).
+/// the surface at its centre and edge midpoints.
 bool quadOnSurface(const std::array<Vec3, 4>& q, const ReferenceSurface& reference,
-                   const NormalAt& normalAt, double tolerance, double sagittaShare) {
-  const auto within = [&](const Vec3& p, double length) {
-    return reference.closestPoint(p).distance <= geom::chordLimit(tolerance, sagittaShare, length);
+                   const NormalAt& normalAt, double tolerance) {
+  const auto within = [&](const Vec3& p) {
+    return reference.closestPoint(p).distance <= tolerance;
   };
   const Vec3 centre = (q[0] + q[1] + q[2] + q[3]) * 0.25;
-  if (!convexQuad(q, normalAt(centre))) return false;
-  if (!within(centre, std::max(distance(q[0], q[2]), distance(q[1], q[3])))) return false;
+  if (!convexQuad(q, normalAt(centre)) || !within(centre)) return false;
   for (std::size_t c = 0; c < 4; ++c)
-    if (!within((q[c] + q[(c + 1) % 4]) * 0.5, distance(q[c], q[(c + 1) % 4]))) return false;
+    if (!within((q[c] + q[(c + 1) % 4]) * 0.5)) return false;
   return true;
+}
+
+/// The area of a quad (half the norm of the cross product of its diagonals).
+double quadArea(const std::array<Vec3, 4>& q) {
+  return 0.5 * norm(cross(q[2] - q[0], q[3] - q[1]));
+}
+
+/// True when the quads keep the area of the surface they span within what edges of `sagittaShare`
+/// keep of a curved surface (8/3 sagittaShare^2, chord_limit.h), measured over all of them
+/// together: each quad is compared with its four quarters, their edge midpoints and centre laid
+/// on the surface, and the difference taken 4/3 times (halving a chord leaves a quarter of its
+/// sagitta). A crease across the grid costs only the quads along it, where a limit per edge would
+/// refuse every edge crossing it. Always true where sagittaShare is not positive.
+bool keepsArea(const std::vector<std::array<Vec3, 4>>& quads, const ReferenceSurface& reference,
+               double sagittaShare) {
+  if (!(sagittaShare > 0.0) || quads.empty()) return true;
+  const auto onSurface = [&](const Vec3& p) { return reference.closestPoint(p).point; };
+  double flat = 0.0, refined = 0.0;
+  for (const auto& q : quads) {
+    flat += quadArea(q);
+    const Vec3 centre = onSurface((q[0] + q[1] + q[2] + q[3]) * 0.25);
+    std::array<Vec3, 4> middle;
+    for (std::size_t c = 0; c < 4; ++c) middle[c] = onSurface((q[c] + q[(c + 1) % 4]) * 0.5);
+    for (std::size_t c = 0; c < 4; ++c)
+      refined += quadArea({q[c], middle[c], centre, middle[(c + 3) % 4]});
+  }
+  const double surface = refined + (refined - flat) / 3.0;
+  return surface - flat <= 8.0 / 3.0 * sagittaShare * sagittaShare * surface;
 }
 
 /// Fills the inside of `grid` ((n1 + 1) x (n2 + 1) indices into the patch's loop nodes, then its
 /// inner nodes; its boundary given: row 0 and column n1 running with the loop) with nodes
 /// interpolated from its sides (GridSides) and appends its quads to `patch`. False when a quad is
-/// not convex or leaves the surface (quadOnSurface).
+/// not convex or leaves the surface (quadOnSurface), or the quads lose area (keepsArea).
 bool addGrid(MappedPatch& patch, std::vector<std::vector<std::uint32_t>>& grid,
              const ReferenceSurface& reference, const NormalAt& normalAt, double tolerance,
              double sagittaShare) {
@@ -161,15 +199,17 @@ bool addGrid(MappedPatch& patch, std::vector<std::vector<std::uint32_t>>& grid,
       grid[i][j] = std::uint32_t(loopCount + patch.inner.size());
       patch.inner.push_back(sides.inner(i, j, reference));
     }
+  std::vector<std::array<Vec3, 4>> corners;
   for (std::size_t j = 0; j < n2; ++j)
     for (std::size_t i = 0; i < n1; ++i) {
       const std::array<std::uint32_t, 4> quad{grid[i][j], grid[i + 1][j], grid[i + 1][j + 1],
                                               grid[i][j + 1]};
       const std::array<Vec3, 4> q{point(quad[0]), point(quad[1]), point(quad[2]), point(quad[3])};
-      if (!quadOnSurface(q, reference, normalAt, tolerance, sagittaShare)) return false;
+      if (!quadOnSurface(q, reference, normalAt, tolerance)) return false;
       patch.quads.push_back(quad);
+      corners.push_back(q);
     }
-  return true;
+  return keepsArea(corners, reference, sagittaShare);
 }
 
 }  // namespace
@@ -316,6 +356,111 @@ std::optional<MappedPatch> midpointPatch(const std::vector<LoopNode>& nodes,
 
 namespace {
 
+/// The two grids of an L-shaped loop of nodes (six corners, `corners[r]` its reflex one) cut from
+/// the reflex corner, continuing the side arriving there, to the node of the side it meets that
+/// leaves both pieces four-sided with as many pieces on opposite sides (see lShapedPatch); the
+/// cut's length through `cutLength`. Nothing when the counts do not allow it, or a quad is not
+/// convex, leaves the surface or the quads lose area (addGrid).
+std::optional<MappedPatch> cutAtReflexCorner(const std::vector<LoopNode>& nodes,
+                                             const std::vector<std::size_t>& corners, std::size_t r,
+                                             const ReferenceSurface& reference,
+                                             const NormalAt& normalAt, double tolerance,
+                                             double sagittaShare, double& cutLength) {
+  const std::size_t n = nodes.size();
+  const auto side = [&](std::size_t k) { return (r + k) % 6; };
+  std::array<std::size_t, 6> pieces{};  // pieces[k]: of the side from the corner k after r
+  for (std::size_t k = 0; k < 6; ++k) pieces[k] = (corners[side(k + 1)] + n - corners[side(k)]) % n;
+  // The pieces: one has sides 0 and 1, the cut and the start of side 2; the other the rest of
+  // side 2, sides 3, 4 and 5 and the cut.
+  if (pieces[2] <= pieces[0] || pieces[4] + pieces[0] != pieces[2] ||
+      pieces[3] != pieces[1] + pieces[5])
+    return std::nullopt;
+  const auto onSide = [&](std::size_t k, std::size_t j) {
+    return std::uint32_t((corners[side(k)] + j) % n);
+  };
+  MappedPatch patch;
+  patch.loop = nodes;
+  // The cut from the reflex corner (t = 0) to its foot on side 2, pieces[1] pieces.
+  const std::size_t cutPieces = pieces[1];
+  const Vec3& from = nodes[onSide(0, 0)].point;
+  const Vec3& foot = nodes[onSide(2, pieces[0])].point;
+  cutLength = distance(from, foot);
+  std::vector<std::uint32_t> cut{onSide(0, 0)};
+  for (std::size_t t = 1; t < cutPieces; ++t) {
+    cut.push_back(std::uint32_t(n + patch.inner.size()));
+    patch.inner.push_back(
+        reference.closestPoint(from + (foot - from) * (double(t) / double(cutPieces))).point);
+  }
+  cut.push_back(onSide(2, pieces[0]));
+  // First piece: row 0 side 0, column n1 side 1, the last row side 2 back to the foot, column 0
+  // the cut.
+  const std::size_t n1 = pieces[0], n2 = pieces[1];
+  std::vector<std::vector<std::uint32_t>> first(n1 + 1, std::vector<std::uint32_t>(n2 + 1));
+  for (std::size_t i = 0; i <= n1; ++i) {
+    first[i][0] = onSide(0, i);
+    first[i][n2] = onSide(2, n1 - i);
+  }
+  for (std::size_t j = 0; j <= n2; ++j) {
+    first[n1][j] = onSide(1, j);
+    first[0][j] = cut[j];
+  }
+  if (!addGrid(patch, first, reference, normalAt, tolerance, sagittaShare)) return std::nullopt;
+  // Second piece: row 0 the rest of side 2 from the foot, column m1 side 3, the last row side 4
+  // back, column 0 the cut from the foot to the reflex corner then side 5 back.
+  const std::size_t m1 = pieces[2] - pieces[0], m2 = pieces[3];
+  std::vector<std::vector<std::uint32_t>> second(m1 + 1, std::vector<std::uint32_t>(m2 + 1));
+  for (std::size_t i = 0; i <= m1; ++i) {
+    second[i][0] = onSide(2, pieces[0] + i);
+    second[i][m2] = onSide(4, m1 - i);
+  }
+  for (std::size_t j = 0; j <= m2; ++j) {
+    second[m1][j] = onSide(3, j);
+    second[0][j] = j <= cutPieces ? cut[cutPieces - j] : onSide(5, pieces[5] - (j - cutPieces));
+  }
+  if (!addGrid(patch, second, reference, normalAt, tolerance, sagittaShare)) return std::nullopt;
+  return patch;
+}
+
+}  // namespace
+
+std::optional<MappedPatch> lShapedPatch(const std::vector<LoopNode>& nodes,
+                                        const ReferenceSurface& reference, const NormalAt& normalAt,
+                                        double tolerance, double sagittaShare) {
+  std::vector<std::array<double, 3>> points;
+  for (const LoopNode& node : nodes) points.push_back(node.point);
+  const std::vector<std::size_t> corners = loopCorners(points);
+  const std::vector<std::size_t> reflex = reflexCorners(points);
+  if (corners.size() != 6 || reflex.size() != 1) return std::nullopt;
+  const std::size_t n = nodes.size();
+  const std::size_t r =
+      std::size_t(std::find(corners.begin(), corners.end(), reflex[0]) - corners.begin());
+  // Continuing the side arriving at the reflex corner; then, on the loop reversed, the side
+  // leaving it.
+  double forwardCut = HUGE_VAL, backwardCut = HUGE_VAL;
+  auto best = cutAtReflexCorner(nodes, corners, r, reference, normalAt, tolerance, sagittaShare,
+                                forwardCut);
+  const std::vector<LoopNode> reversed(nodes.rbegin(), nodes.rend());
+  std::vector<std::size_t> reversedCorners;
+  for (auto c = corners.rbegin(); c != corners.rend(); ++c) reversedCorners.push_back(n - 1 - *c);
+  // The reversed loop's grids face the other way.
+  const NormalAt flipped = [&](const std::array<double, 3>& p) { return normalAt(p) * -1.0; };
+  auto other = cutAtReflexCorner(reversed, reversedCorners, 5 - r, reference, flipped, tolerance,
+                                 sagittaShare, backwardCut);
+  if (other && (!best || backwardCut < forwardCut)) {
+    // Back to the loop's order and orientation.
+    other->loop = nodes;
+    for (auto& quad : other->quads) {
+      for (std::uint32_t& index : quad)
+        if (index < n) index = std::uint32_t(n - 1 - index);
+      std::swap(quad[1], quad[3]);
+    }
+    best = std::move(other);
+  }
+  return best;
+}
+
+namespace {
+
 /// The whole closed loop spaced evenly with `count` nodes from its first node.
 Side respacedLoop(const PolylineParam& loop, const Side& nodes, std::size_t count) {
   Side out{nodes.front()};
@@ -390,21 +535,24 @@ std::optional<MappedRing> mappedRing(const std::array<PolylineParam, 2>& loops,
     return q < n ? a[q].point : q < 2 * n ? b[q - n].point : ring.inner[q - 2 * n];
   };
   bool reversed = false;
+  std::vector<std::array<Vec3, 4>> corners;
   for (std::size_t k = 0; k < rows; ++k)
     for (std::size_t i = 0; i < n; ++i) {
       std::array<std::uint32_t, 4> quad{index(i, k), index(i + 1, k), index(i + 1, k + 1),
                                         index(i, k + 1)};
       if (reversed) std::swap(quad[1], quad[3]);
       std::array<Vec3, 4> q{point(quad[0]), point(quad[1]), point(quad[2]), point(quad[3])};
-      if (!quadOnSurface(q, reference, normalAt, tolerance, sagittaShare)) {
+      if (!quadOnSurface(q, reference, normalAt, tolerance)) {
         if (!ring.quads.empty()) return std::nullopt;
         reversed = true;  // the first quad decides the orientation
         std::swap(quad[1], quad[3]);
         std::swap(q[1], q[3]);
-        if (!quadOnSurface(q, reference, normalAt, tolerance, sagittaShare)) return std::nullopt;
+        if (!quadOnSurface(q, reference, normalAt, tolerance)) return std::nullopt;
       }
       ring.quads.push_back(quad);
+      corners.push_back(q);
     }
+  if (!keepsArea(corners, reference, sagittaShare)) return std::nullopt;
   ring.loops = std::move(nodes);
   return ring;
 }

@@ -41,6 +41,11 @@ using NormalAt = std::function<std::array<double, 3>(const std::array<double, 3>
 /// degrees: the corners mappedPatch and midpointPatch see.
 std::vector<std::size_t> loopCorners(const std::vector<std::array<double, 3>>& loop);
 
+/// The corners of a closed loop (loopCorners) where it turns against its own sense of rotation
+/// (about the normal of its vector area, Newell's): the reflex corners of a patch, such as the
+/// inner corner of an L.
+std::vector<std::size_t> reflexCorners(const std::vector<std::array<double, 3>>& loop);
+
 /// Meshes a patch as a grid when its loop turns by more than 45 degrees at exactly four of its
 /// nodes, and opposite sides have as many pieces, or can get as many: a side whose inner nodes all
 /// have role Boundary and that has no fixed stretch (LoopNode::fixedAfter) is spaced again evenly
@@ -51,10 +56,11 @@ std::vector<std::size_t> loopCorners(const std::vector<std::array<double, 3>>& l
 /// @param reference  the surface the inner nodes are laid on
 /// @param normalAt   the surface normal at a point, which every quad must agree with
 /// @param tolerance  largest distance of a quad's centre and edge midpoints from the surface
-/// @param sagittaShare  where positive, the largest such distance as a share of the edge's length
-///                   (the longer diagonal's at the centre)
+/// @param sagittaShare  where positive, the quads together keep the area of the surface they span
+///                   as edges within this share of their length from a curved surface would
+///                   (8/3 sagittaShare^2); a crease across the patch costs only the quads on it
 /// @return the grid, or nothing when the patch is not four-sided, opposite counts cannot be
-///         matched, or a quad is not convex or leaves the surface
+///         matched, a quad is not convex or leaves the surface, or the quads lose area
 std::optional<MappedPatch> mappedPatch(const PolylineParam& loop,
                                        const std::vector<LoopNode>& nodes,
                                        const ReferenceSurface& reference, const NormalAt& normalAt,
@@ -70,16 +76,34 @@ std::optional<MappedPatch> mappedPatch(const PolylineParam& loop,
 /// @param reference  the surface the inner nodes are laid on
 /// @param normalAt   the surface normal at a point, which every quad must agree with
 /// @param tolerance  largest distance of a quad's centre and edge midpoints from the surface
-/// @param sagittaShare  where positive, the largest such distance as a share of the edge's length
-///                   (the longer diagonal's at the centre)
+/// @param sagittaShare  where positive, the quads together keep the area of the surface they span
+///                   as edges within this share of their length from a curved surface would
+///                   (8/3 sagittaShare^2); a crease across the patch costs only the quads on it
 /// @return the grids (MappedPatch::loop is `nodes`), or nothing when the patch has fewer than
 ///         three corners, no split point lies strictly inside every side (a side as long as the
 ///         others together, an odd count of pieces; four sides with different counts on
-///         opposite sides), or a quad is not convex or leaves the surface
+///         opposite sides), a quad is not convex or leaves the surface, or the quads lose area
 std::optional<MappedPatch> midpointPatch(const std::vector<LoopNode>& nodes,
                                          const ReferenceSurface& reference,
                                          const NormalAt& normalAt, double tolerance,
                                          double sagittaShare);
+
+/// Meshes an L-shaped patch (a loop of nodes with six corners, one of them reflex: reflexCorners)
+/// as two grids: the patch is cut from its reflex corner straight across, continuing one of the
+/// two sides meeting there, to the node of the side it meets that leaves both pieces four-sided
+/// with as many pieces on opposite sides (the counts round an L allow that where its two sides
+/// along each direction add up to the side across from them). Of the two cuts, the shorter that
+/// works. The loop's nodes are kept (MappedPatch::loop is `nodes`), the cut's are inner nodes.
+/// @param nodes      the nodes on the patch's loop, ascending arc length
+/// @param reference  the surface the inner nodes are laid on
+/// @param normalAt   the surface normal at a point, which every quad must agree with
+/// @param tolerance  largest distance of a quad's centre and edge midpoints from the surface
+/// @param sagittaShare  as for mappedPatch
+/// @return the grids, or nothing when the patch is no L, neither cut leaves matching counts, or a
+///         quad is not convex, leaves the surface or the quads lose area
+std::optional<MappedPatch> lShapedPatch(const std::vector<LoopNode>& nodes,
+                                        const ReferenceSurface& reference, const NormalAt& normalAt,
+                                        double tolerance, double sagittaShare);
 
 /// The rows of mappedRing: both loops' nodes (a loop may have been spaced again), the nodes inside
 /// (row after row), and the quads (indices: the first loop's nodes, the second's, then the inner
@@ -102,10 +126,11 @@ struct MappedRing {
 /// @param reference  the surface the inner nodes are laid on
 /// @param normalAt   the surface normal at a point, which every quad must agree with
 /// @param tolerance  largest distance of a quad's centre and edge midpoints from the surface
-/// @param sagittaShare  where positive, the largest such distance as a share of the edge's length
-///                   (the longer diagonal's at the centre)
-/// @return the rows, or nothing when the counts cannot be matched, or a quad is not convex or
-///         leaves the surface
+/// @param sagittaShare  where positive, the quads together keep the area of the surface they span
+///                   as edges within this share of their length from a curved surface would
+///                   (8/3 sagittaShare^2); a crease across the patch costs only the quads on it
+/// @return the rows, or nothing when the counts cannot be matched, a quad is not convex or
+///         leaves the surface, or the quads lose area
 std::optional<MappedRing> mappedRing(const std::array<PolylineParam, 2>& loops,
                                      std::array<std::vector<LoopNode>, 2> nodes, double spacing,
                                      const ReferenceSurface& reference, const NormalAt& normalAt,

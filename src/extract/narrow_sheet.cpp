@@ -293,8 +293,8 @@ std::size_t failingFaces(const QuadMesh& mesh, const QualitySettings& criteria) 
 
 /// The mesh of one patch from the nodes of its loop (see narrow_sheet.h): a grid where the patch
 /// is four-sided (mapped_patch.h); else one row across its boundary polygon (polygon_quads.h),
-/// or grids round its centre (midpointPatch) where no larger share of their elements fails a
-/// criterion than of the row's.
+/// or two grids of an L-shaped patch (lShapedPatch) or grids round its centre (midpointPatch)
+/// where no larger share of their elements fails a criterion than of the row's.
 QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& corner,
                   const QuadMesh& surface, const ReferenceSurface& reference,
                   const JunctionNodes& junctions, const NarrowSheetSettings& settings) {
@@ -303,8 +303,11 @@ QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& 
   if (const auto grid = mappedPatch(PolylineParam(loopPoints, true), nodes, reference,
                                     surfaceNormal, settings.tolerance, settings.sagittaShare))
     return gridMesh(*grid, loopPoints);
-  const auto grids =
-      midpointPatch(nodes, reference, surfaceNormal, settings.tolerance, settings.sagittaShare);
+  auto grids =
+      lShapedPatch(nodes, reference, surfaceNormal, settings.tolerance, settings.sagittaShare);
+  if (!grids)
+    grids =
+        midpointPatch(nodes, reference, surfaceNormal, settings.tolerance, settings.sagittaShare);
   QuadMesh mesh;
   mesh.curves.push_back({loopPoints, true, PointRole::Boundary});
   std::vector<Vec3> polygon;

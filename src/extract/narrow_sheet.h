@@ -13,8 +13,9 @@
 //   loop points farther than `tolerance` (or `sagittaShare` of its length) from the chord between
 //   two nodes (Douglas-Peucker), and one more node where the count would be odd.
 // Faces: a disk whose loop turns sharply at exactly four nodes becomes a grid (mapped_patch.h,
-// nodes inside where it is more than one element wide); one that turns sharply at three or more,
-// a grid round each corner meeting at its centre where they do better than a row; any other
+// nodes inside where it is more than one element wide); an L (six corners, one reflex), two grids
+// either side of a cut from its reflex corner, and one that turns sharply at three or more, a grid
+// round each corner meeting at its centre, where they do better than a row; any other
 // disk, and a ring joined into one polygon by a bridge between its loops, gets one row of quads
 // across (polygon_quads.h), chords allowed where points sampled along them lie within
 // `tolerance` of the sheet, faces agreeing with the sheet's normals and chosen by the quality
@@ -45,9 +46,10 @@ struct NarrowSheetSettings {
   double spacing = 0.0;    ///< distance of the nodes along free stretches of the loop, > 0
   double tolerance = 0.0;  ///< largest distance of a face's chords from the sheet, > 0
   double maxChord = 0.0;   ///< the longest edge across the sheet, > 0
-  /// The largest distance of an edge across the sheet from it as a share of the edge's length
-  /// (a sagitta; below `tolerance` on short edges), so that rows across a sheet curved across
-  /// keep its area; 0: `tolerance` alone.
+  /// The largest distance of an edge of a row across the sheet from it as a share of the edge's
+  /// length (a sagitta; below `tolerance` on short edges), so that rows across a sheet curved
+  /// across keep its area; grids keep as much of the area over all their quads (mapped_patch.h);
+  /// 0: `tolerance` alone.
   double sagittaShare = 0.0;
   /// The quality limits the faces of a row are chosen by (polygon_quads.h); targetSize unused.
   QualitySettings criteria;

@@ -258,11 +258,71 @@ double widestApart(const std::vector<std::array<double, 3>>& a,
   return widest;
 }
 
+/// Adds to `ties` the station of curve `single`, a side of an L-shaped patch across from the two
+/// curves `first` and `second` (one of them along an arm's end): the point of it closest to the
+/// patch's reflex corner `corner`, where the cut from that corner meets it (lShapedPatch), each
+/// stretch to get the count of the curve across it.
+void addReflexStation(const Sheet& sheet, const Polyline& single, const Vec3& corner,
+                      const Polyline& first, const Polyline& second, CurveTies& ties) {
+  std::vector<std::array<double, 3>> points;
+  for (const PointIndex p : single.points) points.push_back(sheet.points[p]);
+  const extract::PolylineParam line(points, false);
+  const auto paramOf = [&](const Vec3& p) {
+    double away = 0.0;
+    return line.closestParam({p[0], p[1], p[2]}, away);
+  };
+  const auto middle = [&](const Polyline& curve) {
+    return paramOf(sheet.points[curve.points[curve.points.size() / 2]]);
+  };
+  const double station = paramOf(corner);
+  const double apart = 1e-6 * line.length();
+  if (station < apart || station > line.length() - apart) return;
+  const bool firstBefore = middle(first) < middle(second);
+  StationTie tie{curveKey(sheet, single),
+                 sheet.pointNodeIds[single.points.front()],
+                 {extract::toArray(line.pointAt(station))},
+                 {curveKey(sheet, firstBefore ? first : second),
+                  curveKey(sheet, firstBefore ? second : first)}};
+  ties.stations.push_back(std::move(tie));
+}
+
+/// Adds to `ties` what an L-shaped patch (six corners, `corners` of `loop`, one of them reflex)
+/// asks where its sides are whole junction curves: along each direction, the two sides running
+/// one way get as many pieces together as the side across from them, and where that side is one
+/// curve and the two are one curve each, a station where the cut from the reflex corner meets it
+/// (addReflexStation), so that the patch cut there is two grids (lShapedPatch, mapped_patch.h).
+void tieLShapedPatch(const Sheet& sheet, const std::vector<PointIndex>& loop,
+                     const std::vector<std::size_t>& corners,
+                     const std::vector<std::optional<PatchSide>>& sides, CurveTies& ties) {
+  std::vector<std::array<double, 3>> loopPoints;
+  for (const PointIndex p : loop) loopPoints.push_back(sheet.points[p]);
+  const std::vector<std::size_t> reflex = extract::reflexCorners(loopPoints);
+  if (reflex.size() != 1) return;
+  const std::size_t r =
+      std::size_t(std::find(corners.begin(), corners.end(), reflex[0]) - corners.begin());
+  const auto side = [&](std::size_t k) -> const std::optional<PatchSide>& {
+    return sides[(r + k) % 6];
+  };
+  // Side k leaves corner k after the reflex one: sides 0 and 4 face side 2, sides 1 and 5 side 3.
+  for (const std::array<std::size_t, 3>& tie :
+       {std::array<std::size_t, 3>{0, 4, 2}, std::array<std::size_t, 3>{1, 5, 3}}) {
+    const auto &a = side(tie[0]), &b = side(tie[1]), &across = side(tie[2]);
+    if (!a || !b || !across) continue;
+    CurveSide together = a->keys;
+    together.insert(together.end(), b->keys.begin(), b->keys.end());
+    ties.pairs.emplace_back(std::move(together), across->keys);
+    if (across->curves.size() == 1 && a->curves.size() == 1 && b->curves.size() == 1)
+      addReflexStation(sheet, sheet.junctionCurves[across->curves[0]], loopPoints[reflex[0]],
+                       sheet.junctionCurves[a->curves[0]], sheet.junctionCurves[b->curves[0]],
+                       ties);
+  }
+}
+
 /// Adds to `ties` the sides facing each other across the sheet's one-loop patches where both are
 /// made of whole junction curves (tieFacingSides): the opposite sides of a four-sided patch, and
 /// the two long sides of a three-sided one (a strip running into a tip: the sides meeting at the
-/// corner opposite its shortest side), and the sides of each four-sided patch
-/// (CurveTies::patches).
+/// corner opposite its shortest side), those of an L (tieLShapedPatch), and the sides of each
+/// four-sided patch (CurveTies::patches).
 void tieOppositeCurves(const Sheet& sheet, const QualitySettings& criteria, CurveTies& ties) {
   std::map<std::pair<PointIndex, PointIndex>, std::size_t> curveOfEdge;
   for (std::size_t c = 0; c < sheet.junctionCurves.size(); ++c) {
@@ -284,10 +344,14 @@ void tieOppositeCurves(const Sheet& sheet, const QualitySettings& criteria, Curv
     for (const PointIndex p : loop) loopPoints.push_back(sheet.points[p]);
     const std::vector<std::size_t> corners = extract::loopCorners(loopPoints);
     const std::size_t count = corners.size();
-    if (count != 3 && count != 4) continue;
+    if (count != 3 && count != 4 && count != 6) continue;
     std::vector<std::optional<PatchSide>> sides;
     for (std::size_t k = 0; k < count; ++k)
       sides.push_back(patchSide(sheet, loop, corners[k], corners[(k + 1) % count], curveOfEdge));
+    if (count == 6) {
+      tieLShapedPatch(sheet, loop, corners, sides, ties);
+      continue;
+    }
     if (count == 3) {
       std::array<double, 3> length{0.0, 0.0, 0.0};
       for (std::size_t k = 0; k < 3; ++k)

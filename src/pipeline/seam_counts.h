@@ -3,7 +3,9 @@
 // two opposite sides are each made of whole junction curves, both sides get the same number of
 // pieces, so that the patch is a grid of rows and columns instead of a row with trapezoids and
 // triangles where the counts differ; so do the two long sides of a three-sided patch (a strip
-// running into a tip). Curves are tied through every patch that has them on opposite sides,
+// running into a tip), and in an L-shaped patch the two sides along each direction together with
+// the side across from them (with a station where the cut from its reflex corner meets that
+// side, so that the L is two grids). Curves are tied through every patch that has them on opposite sides,
 // over the whole deck (the parts on both sides of a seam see the same curve). Where both sides
 // are as many curves whose joints face each other, each curve gets the count of the one across
 // it; else the side with fewer pieces gets more on its curve with the longest pieces until the
