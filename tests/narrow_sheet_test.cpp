@@ -3,6 +3,7 @@
 // shared across a cut, refusals where the boundary alone cannot carry the surface.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -15,6 +16,7 @@
 #include "extract/sheet_patches.h"
 #include "geometry/vec3.h"
 #include "pipeline/remesh_part.h"
+#include "pipeline/seam_spacing.h"
 #include "support/test_support.h"
 #include "voxremesh/deck_compare.h"
 #include "voxremesh/pipeline.h"
@@ -198,6 +200,73 @@ TEST(NarrowSheet, AStripBentAlongItsMiddleIsAGridWhoseEdgesCrossTheCrease) {
   EXPECT_EQ(mesh.faces.size(), 36u);
   EXPECT_EQ(triangleCount(mesh), 0u);
   EXPECT_GT(area(mesh), (1.0 - 0.5 * kAreaTolerance) * 36.0);
+}
+
+/// A tab (part 1, a triangle with corners (0, 0), (0.515, 0.724) and (0, 1.204), its side x = 0 a
+/// seam with a plate, part 2) meshed from its boundary at spacing 0.92, its seam cut in two pieces
+/// shrinking toward its 35-degree corner at the origin (ratio 1.29: the inner node 0.933 from
+/// it), with `followShortPieces` as given; true when a node of the mesh faces that inner node on
+/// the tab's free side from the origin, 0.13 from its far corner (closer than 0.4 spacings).
+bool tabHasNodeFacingTheSeam(bool followShortPieces) {
+  FeModel model;
+  test::addNode(model, 1, 0.0, 0.0);
+  test::addNode(model, 2, 0.515, 0.724);
+  test::addNode(model, 3, 0.0, 1.204);
+  test::addNode(model, 4, -1.0, 0.0);
+  test::addNode(model, 5, -1.0, 1.204);
+  test::addShell(model, 1, 1, {1, 2, 3});
+  test::addShell(model, 2, 2, {4, 1, 3, 5});
+  const std::vector<Sheet> sheets = buildSheets(model, 1);
+  EXPECT_EQ(sheets.size(), 1u);
+  const QuadMesh surface = pipeline::sheetSurface(sheets.front());
+  const ReferenceSurface reference(surface);
+  VolumeCurve seam;
+  seam.points = {{0.0, 0.0, 0.0}, {0.0, 1.204, 0.0}};
+  seam.nodeCount = 2;
+  seam.grading = {{{0.0, 0.0, 0.0}, 1.29}};
+  const extract::JunctionNodes junctions({seam}, 0.92, 0.184);
+  extract::NarrowSheetSettings settings;
+  settings.spacing = 0.92;
+  settings.tolerance = 0.1;
+  settings.maxChord = 2.76;
+  settings.followShortPieces = followShortPieces;
+  const QuadMesh mesh =
+      extract::meshNarrowSheet(sheets.front(), surface, reference, junctions, settings);
+  // The inner node (pieces 1 and 0.29 of 1.204 / 1.29) and its closest point on the free side
+  // from the origin to (0.515, 0.724).
+  const double t = 1.204 / 1.29 * 0.724 / (0.515 * 0.515 + 0.724 * 0.724);
+  const geom::Vec3 facing{0.515 * t, 0.724 * t, 0.0};
+  return std::any_of(mesh.points.begin(), mesh.points.end(),
+                     [&](const geom::Vec3& p) { return geom::distance(p, facing) < 1e-6; });
+}
+
+TEST(NarrowSheet, FreeSidesFollowTheShortPiecesOfAWedgeAcrossWhereAsked) {
+  // The seam's inner node leaves a piece of 0.27 to its far corner (the wedge's rows grow toward
+  // it); the node facing it across the tab lies 0.13 from the tab's far corner. At 0.4 spacings
+  // from the corners it is left out, and the piece between becomes a triangle of 21 degrees;
+  // following the short pieces across, it is placed, for a quad and a triangle there.
+  EXPECT_FALSE(tabHasNodeFacingTheSeam(false));
+  EXPECT_TRUE(tabHasNodeFacingTheSeam(true));
+}
+
+TEST(SheetWidth, AStripIsAsWideAsItsRowsAndACompactSheetAsItsShorterSide) {
+  // A strip 40 x 2: 2 x area / boundary 1.9, its rectangle's shorter side 2. A square 4 x 4: 2
+  // and 4. A triangle tab 0.52 high on a base of 1.2: 0.22 and 0.28, whose rows (aspect limit x
+  // width / 1.5) then keep its base one piece, as the tab's one element has it.
+  const Sheet strip40 = buildSheets(strip(20, 1, 2.0, 2.0), 1).front();
+  EXPECT_NEAR(pipeline::sheetWidth(strip40), 160.0 / 84.0, 1e-9);
+  EXPECT_NEAR(pipeline::stripWidth(strip40), 2.0, 1e-9);
+  const Sheet square = buildSheets(strip(2, 2, 2.0, 2.0), 1).front();
+  EXPECT_NEAR(pipeline::sheetWidth(square), 2.0, 1e-9);
+  EXPECT_NEAR(pipeline::stripWidth(square), 4.0, 1e-9);
+  FeModel tab;
+  test::addNode(tab, 1, 0.0, 0.0);
+  test::addNode(tab, 2, 0.515, 0.724);
+  test::addNode(tab, 3, 0.0, 1.204);
+  test::addShell(tab, 1, 1, {1, 2, 3});
+  const Sheet triangle = buildSheets(tab, 1).front();
+  EXPECT_LT(pipeline::sheetWidth(triangle), 0.23);
+  EXPECT_GT(pipeline::rowLength(triangle, RemeshSettings{}), 1.204 / 1.5);
 }
 
 TEST(NarrowSheet, ATaperedEndStillGetsQuadsWhereTheNodesFace) {

@@ -20,8 +20,10 @@ using namespace geom;  // NOLINT: the vector operators
 
 namespace {
 
-/// A node facing one across the sheet is placed only this share of the spacing or more from the
-/// nodes before and after it on the loop (so no piece is much shorter than the spacing).
+/// A node facing one across the sheet is placed only this share of the spacing (or, where the
+/// nodes may follow short pieces across, of the pieces next to the node it faces where those are
+/// shorter: a wedge's junction nodes close toward its wide end) or more from the nodes before and
+/// after it on the loop (so no piece is much shorter than the spacing).
 constexpr double kShortestPiece = 0.4;
 /// One row across a patch is searched among at most this many boundary nodes (the search costs
 /// about the cube of the count where chords are long): a wider sheet is no strip.
@@ -37,21 +39,42 @@ openvdb::math::Vec3d tangentAt(const PolylineParam& loop, double v) {
   return d.length() > 0.0 ? d / d.length() : d;
 }
 
-/// A node placed on a loop, which the nodes of stretches facing it line up with: its position and
-/// the direction of its loop there.
+/// A node placed on a loop, which the nodes of stretches facing it line up with: its position, the
+/// direction of its loop there and the shorter of the pieces next to it on its loop.
 struct FacingSource {
   Vec3 point{};
   openvdb::math::Vec3d tangent;
+  double piece = HUGE_VAL;
 };
 
-/// The arc lengths in [c0, c1] (c1 may pass the length once) of the loop's closest points there
-/// to each of `sources` within `reach` of it where the loop runs against the source's stretch (by
-/// more than 135 degrees: the sides of a strip face each other), ascending.
-std::vector<double> facingParams(const PolylineParam& loop, double c0, double c1,
-                                 const std::vector<FacingSource>& sources, double reach) {
+/// The facing sources of the nodes on a closed loop (corners excepted: a strip's tapered end is
+/// no row); `nodes` in any order.
+std::vector<FacingSource> facingSources(std::vector<LoopNode> nodes, const PolylineParam& loop) {
+  std::stable_sort(nodes.begin(), nodes.end(),
+                   [](const LoopNode& a, const LoopNode& b) { return a.param < b.param; });
+  std::vector<FacingSource> sources;
+  const std::size_t n = nodes.size();
+  for (std::size_t j = 0; j < n; ++j) {
+    if (nodes[j].role == PointRole::Corner) continue;
+    const double before = nodes[j].param - nodes[(j + n - 1) % n].param;
+    const double after = nodes[(j + 1) % n].param - nodes[j].param;
+    const auto wrapped = [&](double gap) { return gap > 0.0 ? gap : gap + loop.length(); };
+    sources.push_back({nodes[j].point, tangentAt(loop, nodes[j].param),
+                       n > 1 ? std::min(wrapped(before), wrapped(after)) : HUGE_VAL});
+  }
+  return sources;
+}
+
+/// Per source of `sources` within `reach` of the loop where the loop runs against the source's
+/// stretch (by more than 135 degrees: the sides of a strip face each other), the arc length in
+/// [c0, c1] (c1 may pass the length once) of the loop's closest point to it, with the source's
+/// shorter piece; ascending.
+std::vector<std::pair<double, double>> facingParams(const PolylineParam& loop, double c0, double c1,
+                                                    const std::vector<FacingSource>& sources,
+                                                    double reach) {
   const double length = loop.length();
   const std::size_t m = loop.pointCount();
-  std::vector<double> params;
+  std::vector<std::pair<double, double>> params;
   for (const FacingSource& source : sources) {
     const openvdb::math::Vec3d p(source.point[0], source.point[1], source.point[2]);
     double best = reach, bestParam = -1.0;
@@ -70,7 +93,7 @@ std::vector<double> facingParams(const PolylineParam& loop, double c0, double c1
     }
     if (bestParam > c0 && bestParam < c1 &&
         tangentAt(loop, bestParam).dot(source.tangent) < -kFacingCosine)
-      params.push_back(bestParam);
+      params.emplace_back(bestParam, source.piece);
   }
   std::sort(params.begin(), params.end());
   return params;
@@ -149,23 +172,25 @@ std::vector<LoopNode> anchorNodes(const NodeLoop& walk, const std::vector<Vec3>&
 }
 
 /// The anchors plus nodes in their free gaps, in loop order: first the points facing nodes
-/// already placed across the sheet (so that rows run straight across; corners excepted), then
-/// even pieces about `spacing` long between; ascending.
+/// already placed across the sheet (so that rows run straight across; corners excepted; with
+/// `followShortPieces` also as close to other nodes as the pieces next to the node faced are
+/// short, see kShortestPiece), then even pieces about `spacing` long between; ascending.
 std::vector<LoopNode> fillFreeGaps(const NodeLoop& walk, const std::vector<LoopNode>& anchors,
                                    double spacing, double reach,
-                                   const std::vector<FacingSource>& across) {
+                                   const std::vector<FacingSource>& across,
+                                   bool followShortPieces) {
   std::vector<LoopNode> nodes = anchors;
   for (std::size_t j = 0; j < anchors.size(); ++j) {
     if (!walk.free(anchors, j)) continue;
     const double c0 = anchors[j].param, c1 = walk.gapEnd(anchors, j);
     std::vector<FacingSource> placed = across;
-    for (const LoopNode& node : nodes)  // a corner across (a strip's tapered end) is no row
-      if (node.role != PointRole::Corner)
-        placed.push_back({node.point, tangentAt(walk.loop, node.param)});
+    for (const FacingSource& source : facingSources(nodes, walk.loop)) placed.push_back(source);
     std::vector<double> breaks{c0};
-    for (const double v : facingParams(walk.loop, c0, c1, placed, reach))
-      if (v - breaks.back() >= kShortestPiece * spacing && c1 - v >= kShortestPiece * spacing)
-        breaks.push_back(v);
+    for (const auto& [v, piece] : facingParams(walk.loop, c0, c1, placed, reach)) {
+      const double shortest =
+          kShortestPiece * (followShortPieces ? std::min(spacing, piece) : spacing);
+      if (v - breaks.back() >= shortest && c1 - v >= shortest) breaks.push_back(v);
+    }
     breaks.push_back(c1);
     for (std::size_t b = 0; b + 1 < breaks.size(); ++b) {
       if (b > 0) nodes.push_back(walk.nodeAt(breaks[b]));
@@ -209,8 +234,9 @@ std::vector<LoopNode> loopNodes(const std::vector<Vec3>& points, const std::vect
                                 const JunctionNodes& junctions, const NarrowSheetSettings& settings,
                                 const std::vector<FacingSource>& across) {
   const NodeLoop walk(points, junctions);
-  std::vector<LoopNode> nodes = fillFreeGaps(walk, anchorNodes(walk, points, corner, junctions),
-                                             settings.spacing, settings.maxChord, across);
+  std::vector<LoopNode> nodes =
+      fillFreeGaps(walk, anchorNodes(walk, points, corner, junctions), settings.spacing,
+                   settings.maxChord, across, settings.followShortPieces);
   addFarPointsAndEvenCount(walk, nodes, settings.tolerance, settings.sagittaShare);
   for (std::size_t j = 0; j < nodes.size(); ++j) nodes[j].fixedAfter = !walk.free(nodes, j);
   return nodes;
@@ -282,23 +308,26 @@ QuadMesh gridMesh(const MappedPatch& grid, const std::vector<Vec3>& loopPoints) 
   return mesh;
 }
 
-/// The faces of `mesh` failing one of the criteria (elementFailures).
+/// The faces of `mesh` failing one of the criteria (elementFailures) but the minimum length, which
+/// the caller judges against the size it used (as polygonQuads does).
 std::size_t failingFaces(const QuadMesh& mesh, const QualitySettings& criteria) {
   const std::vector<ElementQuality> qualities = elementQualities(mesh);
+  const std::uint32_t lengthBit = 1u << static_cast<int>(Criterion::MinLength);
   std::size_t failing = 0;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
-    failing += elementFailures(qualities[f], cornerCount(mesh.faces[f]), criteria) != 0;
+    failing +=
+        (elementFailures(qualities[f], cornerCount(mesh.faces[f]), criteria) & ~lengthBit) != 0;
   return failing;
 }
 
-/// The mesh of one patch from the nodes of its loop (see narrow_sheet.h): a grid where the patch
-/// is four-sided (mapped_patch.h); else one row across its boundary polygon (polygon_quads.h),
-/// or two grids of an L-shaped patch (lShapedPatch) or grids round its centre (midpointPatch)
-/// where no larger share of their elements fails a criterion than of the row's.
-QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& corner,
-                  const QuadMesh& surface, const ReferenceSurface& reference,
-                  const JunctionNodes& junctions, const NarrowSheetSettings& settings) {
-  const std::vector<LoopNode> nodes = loopNodes(loopPoints, corner, junctions, settings, {});
+/// The mesh of one patch from the given nodes of its loop: a grid where the patch is four-sided
+/// (mapped_patch.h); else one row across its boundary polygon (polygon_quads.h), or two grids of
+/// an L-shaped patch (lShapedPatch) or grids round its centre (midpointPatch) where no larger
+/// share of their elements fails a criterion than of the row's. Throws NarrowSheetRefusal as
+/// addRowFaces where there are no grids.
+QuadMesh meshLoopNodes(const std::vector<Vec3>& loopPoints, const std::vector<LoopNode>& nodes,
+                       const QuadMesh& surface, const ReferenceSurface& reference,
+                       const NarrowSheetSettings& settings) {
   const auto surfaceNormal = [&](const Vec3& p) { return normalAt(surface, reference, p); };
   if (const auto grid = mappedPatch(PolylineParam(loopPoints, true), nodes, reference,
                                     surfaceNormal, settings.tolerance, settings.sagittaShare))
@@ -331,6 +360,14 @@ QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& 
       return gridded;
   }
   return mesh;
+}
+
+/// The mesh of one patch from its loop: its nodes (loopNodes) meshed by meshLoopNodes.
+QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& corner,
+                  const QuadMesh& surface, const ReferenceSurface& reference,
+                  const JunctionNodes& junctions, const NarrowSheetSettings& settings) {
+  return meshLoopNodes(loopPoints, loopNodes(loopPoints, corner, junctions, settings, {}), surface,
+                       reference, settings);
 }
 
 /// The nodes the junctions prescribe inside a rung (its points from one loop to the other): its
@@ -368,11 +405,7 @@ QuadMesh meshRing(const std::array<std::vector<Vec3>, 2>& loops,
                   const QuadMesh& surface, const ReferenceSurface& reference,
                   const JunctionNodes& junctions, const NarrowSheetSettings& settings) {
   const std::vector<LoopNode> first = loopNodes(loops[0], corners[0], junctions, settings, {});
-  std::vector<FacingSource> across;
-  const PolylineParam firstLoop(loops[0], true);
-  for (const LoopNode& node : first)
-    if (node.role != PointRole::Corner)
-      across.push_back({node.point, tangentAt(firstLoop, node.param)});
+  const std::vector<FacingSource> across = facingSources(first, PolylineParam(loops[0], true));
   const std::vector<LoopNode> second = loopNodes(loops[1], corners[1], junctions, settings, across);
   const auto surfaceNormal = [&](const Vec3& p) { return normalAt(surface, reference, p); };
   if (const auto rows =

@@ -51,6 +51,10 @@ struct NarrowSheetSettings {
   /// across keep its area; grids keep as much of the area over all their quads (mapped_patch.h);
   /// 0: `tolerance` alone.
   double sagittaShare = 0.0;
+  /// Nodes on free stretches facing junction nodes across may lie as close to the nodes next to
+  /// them as the pieces next to the node they face are short (a wedge's junction nodes close
+  /// toward its wide end), not only a share of the spacing away.
+  bool followShortPieces = false;
   /// The quality limits the faces of a row are chosen by (polygon_quads.h); targetSize unused.
   QualitySettings criteria;
 };

@@ -138,7 +138,10 @@ std::vector<std::uint8_t> foldedAgainstSheet(const QuadMesh& mesh, const QuadMes
   return folded;
 }
 
-double sheetWidth(const Sheet& sheet) {
+namespace {
+
+/// A sheet's area and the length of its boundary loops.
+std::pair<double, double> areaAndBoundary(const Sheet& sheet) {
   double area = 0.0, boundary = 0.0;
   for (const auto& face : sheet.faces) {
     const bool triangle = face[3] == kNoPoint;
@@ -152,7 +155,21 @@ double sheetWidth(const Sheet& sheet) {
       boundary += norm(sheet.points[loop.points[(i + 1) % loop.points.size()]] -
                        sheet.points[loop.points[i]]);
     }
+  return {area, boundary};
+}
+
+}  // namespace
+
+double sheetWidth(const Sheet& sheet) {
+  const auto [area, boundary] = areaAndBoundary(sheet);
   return boundary > 0.0 ? 2.0 * area / boundary : std::numeric_limits<double>::infinity();
+}
+
+double stripWidth(const Sheet& sheet) {
+  const auto [area, boundary] = areaAndBoundary(sheet);
+  if (!(boundary > 0.0)) return std::numeric_limits<double>::infinity();
+  const double quarter = 0.25 * boundary;
+  return quarter - std::sqrt(std::max(0.0, quarter * quarter - area));
 }
 
 PartAcceptance acceptPartMesh(const QuadMesh& mesh, const QuadMesh& original,

@@ -55,21 +55,25 @@ double boundaryMeshSize(const QuadMesh& mesh, double spacing) {
   return std::min(spacing, 2.0 * narrowest);
 }
 
-/// One sheet's mesh from its boundary alone (narrow_sheet.h), nodes `spacing` apart along it;
-/// the hard points inside the sheet are snapped to nodes inside the mesh (a grid's); then, when
-/// `optimize` and settings.optimize, optimised at the spacing as a volume's mesh is, its minimum
-/// length judged as the part's acceptance judges it (at boundaryMeshSize).
+/// One sheet's mesh from its boundary alone (narrow_sheet.h), nodes `spacing` apart along it
+/// (with `followShortPieces`, nodes on free stretches also following short pieces across:
+/// NarrowSheetSettings::followShortPieces); the hard points inside the sheet are snapped to nodes
+/// inside the mesh (a grid's); then, when `optimize` and settings.optimize, optimised at the
+/// spacing as a volume's mesh is, its minimum length judged as the part's acceptance judges it
+/// (at boundaryMeshSize).
 /// Throws extract::NarrowSheetRefusal when the sheet cannot be meshed so, or a hard point finds
 /// no node inside the mesh within `spacing`.
 QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
                           const ReferenceSurface& original, double spacing, double targetSize,
                           double junctionSpacing, const std::vector<Point3>& hardPoints,
-                          const RemeshSettings& settings, bool optimize = true) {
+                          const RemeshSettings& settings, bool optimize = true,
+                          bool followShortPieces = false) {
   extract::NarrowSheetSettings narrow;
   narrow.spacing = spacing;
   narrow.tolerance = kNarrowChordShare * targetSize;
   narrow.maxChord = kNarrowChordWidths * std::max(sheetWidth(sheet), spacing);
   narrow.sagittaShare = kChordSagittaShare;
+  narrow.followShortPieces = followShortPieces;
   narrow.criteria = settings.optimizeSettings.quality;
   QuadMesh mesh = extract::meshNarrowSheet(
       sheet, surface, original,
@@ -258,25 +262,32 @@ std::vector<Point3> junctionNodePositions(const std::vector<Sheet>& sheets, doub
 /// Thrown by an attempt that ends the part's attempts (out of memory, a refused budget).
 struct StopAttempts {};
 
-/// The plans of an attempt from the sheets' boundaries: each sheet `plans` meshes through a volume
-/// is meshed from its boundary where it can be (nodes one target size apart, or its rowLength
-/// where that is less), and not optimised (on a wide sheet, such as a wing's skin, the edits
-/// move its area and the loads on it more than the rows as made); empty when no sheet can be.
-std::vector<SheetPlan> boundaryPlans(const std::vector<Sheet>& sheets,
-                                     const SheetHardPoints& hardPoints, const PartPlan& plan,
-                                     const RemeshSettings& settings, double junctionSpacing,
-                                     const std::vector<SheetPlan>& plans) {
+/// The plans of another attempt with sheets meshed from their boundary (meshFromBoundary) again;
+/// empty when no sheet can be. With `fromVolumes`, each sheet `plans` meshes through a volume, with
+/// nodes one target size apart (or its rowLength where that is less), not optimised (on a wide
+/// sheet, such as a wing's skin, the edits move its area and the loads on it more than the rows
+/// as made). Else each sheet `plans` meshes from its boundary, at its size, with the nodes of its
+/// free stretches following short pieces across (NarrowSheetSettings::followShortPieces: a
+/// wedge's junction nodes close toward its wide end, which the first nodes' rows cannot follow).
+std::vector<SheetPlan> replannedFromBoundary(const std::vector<Sheet>& sheets,
+                                             const SheetHardPoints& hardPoints,
+                                             const PartPlan& plan, const RemeshSettings& settings,
+                                             double junctionSpacing,
+                                             const std::vector<SheetPlan>& plans,
+                                             bool fromVolumes) {
   std::vector<SheetPlan> result = plans;
   bool any = false;
   for (std::size_t k = 0; k < sheets.size(); ++k) {
-    if (plans[k].fromBoundary) continue;
-    const double spacing = std::min(plan.targetSize, rowLength(sheets[k], settings));
+    if (plans[k].fromBoundary == fromVolumes) continue;
+    const double spacing =
+        fromVolumes ? std::min(plan.targetSize, rowLength(sheets[k], settings)) : plans[k].size;
     try {
       const QuadMesh surface = sheetSurface(sheets[k]);
       const ReferenceSurface original(surface);
-      result[k] = {true, spacing,
-                   meshFromBoundary(sheets[k], surface, original, spacing, plan.targetSize,
-                                    junctionSpacing, hardPoints[k], settings, false)};
+      result[k] = {
+          true, spacing,
+          meshFromBoundary(sheets[k], surface, original, spacing, plan.targetSize, junctionSpacing,
+                           hardPoints[k], settings, !fromVolumes, !fromVolumes)};
       any = true;
     } catch (const extract::NarrowSheetRefusal&) {
     }
@@ -563,11 +574,15 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
             junctionNodePositions(sheets, extractJunctionSpacing(settings, junctionSpacing));
       }
       if (attempt(plans, retry == 0)) return part;
+      // The same sizes again with its boundary meshes' nodes following short pieces across.
+      const std::vector<SheetPlan> following =
+          replannedFromBoundary(sheets, hardPoints, plan, settings, junctionSpacing, plans, false);
+      if (!following.empty() && attempt(following, retry == 0)) return part;
     }
     // Last: every volume sheet that can be meshed from its boundary so (a tube, a cup, a box
     // whose volume mesh lost or added a loop).
     std::vector<SheetPlan> fromBoundary =
-        boundaryPlans(sheets, hardPoints, plan, settings, junctionSpacing, plans);
+        replannedFromBoundary(sheets, hardPoints, plan, settings, junctionSpacing, plans, true);
     if (!fromBoundary.empty() && attempt(fromBoundary, false)) {
       part.reason += std::string(part.reason.empty() ? "" : "; ") +
                      "meshed from its sheets' boundaries after " + std::to_string(failures.size()) +

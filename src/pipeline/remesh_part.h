@@ -73,6 +73,11 @@ std::vector<std::uint8_t> foldedAgainstSheet(const QuadMesh& mesh, const QuadMes
 /// The width of a sheet as a strip: 2 x area / boundary length (infinite without boundary).
 double sheetWidth(const Sheet& sheet);
 
+/// The width of a sheet as the rectangle of its area and boundary length: the shorter side (for
+/// a long strip about sheetWidth; for a compact sheet, a square or a triangle, up to twice it),
+/// the quarter of the boundary length where no rectangle has them (a round sheet).
+double stripWidth(const Sheet& sheet);
+
 /// Called with the stage a part enters ("volume", "extract", "optimize").
 using StageCallback = std::function<void(const char* stage)>;
 

@@ -5,11 +5,11 @@
 // triangles where the counts differ; so do the two long sides of a three-sided patch (a strip
 // running into a tip), and in an L-shaped patch the two sides along each direction together with
 // the side across from them (with a station where the cut from its reflex corner meets that
-// side, so that the L is two grids). Curves are tied through every patch that has them on opposite sides,
-// over the whole deck (the parts on both sides of a seam see the same curve). Where both sides
-// are as many curves whose joints face each other, each curve gets the count of the one across
-// it; else the side with fewer pieces gets more on its curve with the longest pieces until the
-// totals match, and a single curve facing several gets stations, nodes facing their joints,
+// side, so that the L is two grids). Curves are tied through every patch that has them on opposite
+// sides, over the whole deck (the parts on both sides of a seam see the same curve). Where both
+// sides are as many curves whose joints face each other, each curve gets the count of the one
+// across it; else the side with fewer pieces gets more on its curve with the longest pieces until
+// the totals match, and a single curve facing several gets stations, nodes facing their joints,
 // each stretch with the count of the curve across. Then a curve between rungs of different
 // lengths (a tapering strip) gets as many pieces as keep its rows' trapezoids within the
 // Jacobian ratio, and a side of a four-sided patch whose pieces are longer than the aspect limit

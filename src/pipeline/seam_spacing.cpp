@@ -20,7 +20,7 @@ constexpr double kLongestPiece = 1.5;
 }  // namespace
 
 double rowLength(const Sheet& sheet, const RemeshSettings& settings) {
-  return settings.optimizeSettings.quality.maxAspectRatio * sheetWidth(sheet) / kLongestPiece;
+  return settings.optimizeSettings.quality.maxAspectRatio * stripWidth(sheet) / kLongestPiece;
 }
 
 double sheetNodeSpacing(const Sheet& sheet, double targetSize, const RemeshSettings& settings) {

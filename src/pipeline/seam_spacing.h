@@ -13,7 +13,7 @@
 namespace voxremesh::pipeline {
 
 /// The longest row length along a narrow sheet whose elements still pass the aspect criterion:
-/// an element of a row is the sheet's width (sheetWidth) across and one piece of its boundary
+/// an element of a row is the sheet's width (stripWidth) across and one piece of its boundary
 /// along, and a boundary cut into even pieces about a spacing long (rounded to whole pieces) has
 /// pieces up to 1.5 spacings long; so the aspect limit (settings.optimizeSettings.quality) x the
 /// width / 1.5.
