@@ -320,14 +320,14 @@ std::size_t failingFaces(const QuadMesh& mesh, const QualitySettings& criteria) 
   return failing;
 }
 
-/// The mesh of one patch from the given nodes of its loop: a grid where the patch is four-sided
-/// (mapped_patch.h); else one row across its boundary polygon (polygon_quads.h), or two grids of
-/// an L-shaped patch (lShapedPatch) or grids round its centre (midpointPatch) where no larger
-/// share of their elements fails a criterion than of the row's. Throws NarrowSheetRefusal as
-/// addRowFaces where there are no grids.
-QuadMesh meshLoopNodes(const std::vector<Vec3>& loopPoints, const std::vector<LoopNode>& nodes,
-                       const QuadMesh& surface, const ReferenceSurface& reference,
-                       const NarrowSheetSettings& settings) {
+/// The mesh of one patch from the nodes of its loop (see narrow_sheet.h): a grid where the patch
+/// is four-sided (mapped_patch.h); else one row across its boundary polygon (polygon_quads.h),
+/// or two grids of an L-shaped patch (lShapedPatch) or grids round its centre (midpointPatch)
+/// where no larger share of their elements fails a criterion than of the row's.
+QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& corner,
+                  const QuadMesh& surface, const ReferenceSurface& reference,
+                  const JunctionNodes& junctions, const NarrowSheetSettings& settings) {
+  const std::vector<LoopNode> nodes = loopNodes(loopPoints, corner, junctions, settings, {});
   const auto surfaceNormal = [&](const Vec3& p) { return normalAt(surface, reference, p); };
   if (const auto grid = mappedPatch(PolylineParam(loopPoints, true), nodes, reference,
                                     surfaceNormal, settings.tolerance, settings.sagittaShare))
@@ -360,14 +360,6 @@ QuadMesh meshLoopNodes(const std::vector<Vec3>& loopPoints, const std::vector<Lo
       return gridded;
   }
   return mesh;
-}
-
-/// The mesh of one patch from its loop: its nodes (loopNodes) meshed by meshLoopNodes.
-QuadMesh meshLoop(const std::vector<Vec3>& loopPoints, const std::vector<char>& corner,
-                  const QuadMesh& surface, const ReferenceSurface& reference,
-                  const JunctionNodes& junctions, const NarrowSheetSettings& settings) {
-  return meshLoopNodes(loopPoints, loopNodes(loopPoints, corner, junctions, settings, {}), surface,
-                       reference, settings);
 }
 
 /// The nodes the junctions prescribe inside a rung (its points from one loop to the other): its
