@@ -524,6 +524,27 @@ TEST(Pipeline, ANarrowPartMeshedFromItsBoundaryIsRetriedWithRowsHalfAsLong) {
             RemeshSettings{}.optimizeSettings.quality.maxFailingShare);
 }
 
+TEST(Pipeline, AFoldTheLastOptimisationPassesLeaveIsCutOut) {
+  // freedlm.bdf at twice its median edge: the fuselage skin (part 1) fails its first size and is
+  // retried at a quarter of it, its seams still sampled at the deck's size. Where a seam piece
+  // 9.5 long cuts a curved edge, a split of the long faces leaves a sliver on that chord, and the
+  // last passes (fitting to the original, splitting failing quads) turn it over past the chord.
+  // Cut out again after them, the skin's first round passes, and with it the parts whose meshes
+  // passed beside it (7, 10 and 48), which a kept skin made keep its nodes.
+  VOXREMESH_REQUIRE_SHARED_DECK(path, "freedlm.bdf");
+  FeModel model = readDeck(path.string());
+  RemeshSettings settings;
+  settings.targetSize = 2.0 * planRemesh(model, settings).front().targetSize;
+  const RemeshReport report = remeshDeck(model, settings);
+  std::set<Id> remeshed;
+  for (const RemeshedPart& part : report.parts) {
+    if (part.status == PartStatus::Kept) continue;  // its elements as the input has them
+    remeshed.insert(part.plan.part);
+    EXPECT_EQ(part.acceptance.folded, 0u) << "part " << part.plan.part;
+  }
+  for (const Id part : {1, 7, 10, 48}) EXPECT_EQ(remeshed.count(part), 1u) << "part " << part;
+}
+
 /// Remeshes a one-part model at the given target size with the default settings.
 RemeshReport remeshOnePart(FeModel& model, double size) {
   RemeshSettings settings;

@@ -356,7 +356,8 @@ struct OptimizeStats {
   std::size_t farPulls = 0;       ///< points pulled towards far original places
   std::size_t failingSplit = 0;   ///< failing quads split into two triangles (splitFailingQuads)
   std::size_t invertedSplit = 0;  ///< quads with a reflex corner split into two triangles (last)
-  std::size_t foldsRefilled = 0;  ///< fold regions untangled or refilled (refillFoldedRegions)
+  std::size_t foldsRefilled =
+      0;  ///< fold regions untangled or refilled (refillFoldedRegions, both)
   WarpingResult warping;
 };
 
@@ -367,7 +368,8 @@ struct OptimizeStats {
 /// leave fewer criteria failing around a point, warping included), the reconnection of the faces
 /// still failing (reconnectFailingFaces), points pulled towards the far places of the original
 /// (fitFarOriginalPoints), the split of quads still failing into triangle pairs that fail less
-/// (splitFailingQuads), and last the split of quads still inverted (splitInvertedQuads).
+/// (splitFailingQuads), the split of quads still inverted (splitInvertedQuads), and last the
+/// regions round faces these passes left folded refilled again.
 /// @param mesh      the extracted mesh (preconditions at the top of the file)
 /// @param original  the original surface (built from the input shells), not empty
 /// @param settings  see OptimizeSettings
