@@ -356,8 +356,7 @@ struct OptimizeStats {
   std::size_t farPulls = 0;       ///< points pulled towards far original places
   std::size_t failingSplit = 0;   ///< failing quads split into two triangles (splitFailingQuads)
   std::size_t invertedSplit = 0;  ///< quads with a reflex corner split into two triangles (last)
-  std::size_t foldsRefilled =
-      0;  ///< fold regions untangled or refilled (refillFoldedRegions, both)
+  std::size_t foldsRefilled = 0;  ///< fold regions untangled or refilled (both passes)
   WarpingResult warping;
 };
 
