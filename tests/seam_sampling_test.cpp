@@ -272,3 +272,41 @@ TEST(SeamSampling, TheSidesOfAnLShapedStripAddUpAcrossItSoThatItIsTwoGrids) {
   EXPECT_EQ(strip->acceptance.failing, 0u) << strip->reason;
   EXPECT_EQ(strip->trias, 0u) << strip->reason;
 }
+
+TEST(SeamSampling, ATipWhoseBaseHasTwoPiecesGetsRowsInsteadOfAFan) {
+  // A triangular tab (part 1, z = 0), its tip at the origin (44 degrees), its base 1.62 tall at
+  // x = 2, where two plates meet it (parts 2 and 3, joined at the base's middle): the base is two
+  // seams. Plates above and below (parts 4 and 5) hold its long sides. At size 4 each long side
+  // would be one piece, and the tab a fan of two triangles of 22 degrees at its tip. Its long
+  // sides get as many pieces as its base instead: a triangle at the tip, then a row of a quad and
+  // a triangle.
+  FeModel model;
+  const double half = 2.0 * std::tan(22.0 * M_PI / 180.0);
+  test::addNode(model, 1, 0.0, 0.0);
+  test::addNode(model, 2, 2.0, half);
+  test::addNode(model, 3, 2.0, 0.0);
+  test::addNode(model, 4, 2.0, -half);
+  test::addNode(model, 5, 5.0, 0.0);
+  test::addNode(model, 6, 5.0, half);
+  test::addNode(model, 7, 0.0, 3.0);
+  test::addNode(model, 8, 2.0, 3.0);
+  test::addNode(model, 9, 2.0, -3.0);
+  test::addNode(model, 10, 0.0, -3.0);
+  test::addNode(model, 11, 5.0, -half);
+  test::addShell(model, 1, 1, {1, 4, 3});
+  test::addShell(model, 2, 1, {1, 3, 2});
+  test::addShell(model, 3, 2, {3, 5, 6, 2});
+  test::addShell(model, 4, 3, {4, 11, 5, 3});
+  test::addShell(model, 5, 4, {1, 2, 8, 7});
+  test::addShell(model, 6, 5, {1, 10, 9, 4});
+  RemeshSettings settings;
+  settings.targetSize = 4.0;
+  const RemeshReport report = remeshDeck(model, settings);
+  const RemeshedPart* tab = nullptr;
+  for (const RemeshedPart& part : report.parts)
+    if (part.plan.part == 1) tab = &part;
+  ASSERT_NE(tab, nullptr);
+  EXPECT_EQ(tab->status, PartStatus::Remeshed) << tab->reason;
+  EXPECT_EQ(tab->acceptance.failing, 0u) << tab->reason;
+  EXPECT_GE(tab->quads, 1u) << tab->reason;
+}

@@ -9,6 +9,7 @@
 #include <exception>
 #include <map>
 #include <optional>
+#include <set>
 
 #include "extract/mapped_patch.h"
 #include "extract/narrow_sheet.h"
@@ -56,12 +57,24 @@ struct TiedPatch {
   std::array<double, 4> extent{0.0, 0.0, 0.0, 0.0};
 };
 
+/// A three-sided patch of a narrow sheet (a strip running into a tip): its base (the side across
+/// from the tip), its two long sides, and the angle the sheet spans at the tip, for the rows that
+/// must grow from one piece at the tip to the base's count.
+struct TipPatch {
+  CurveSide base, left, right;
+  double tipDeg = 0.0;
+  /// The tip's node ID with the next one's along each side (as SeamSampling::grading keys them).
+  std::array<NodeEdge, 2> wedgeSides;
+};
+
 /// What one part asks: pairs of sides facing each other across its narrow sheets' four-sided
 /// patches, the pieces and length of each curve on such a side, and more.
 struct CurveTies {
   std::vector<std::pair<CurveSide, CurveSide>> pairs;
   /// Four-sided patches (TiedPatch).
   std::vector<TiedPatch> patches;
+  /// Three-sided patches made of whole curves (TipPatch).
+  std::vector<TipPatch> tips;
   std::vector<std::pair<NodeEdge, TiedCurve>> curves;
   /// Curves facing one across a patch whose rungs at their two ends differ in length (a tapering
   /// strip): the curve and the pieces that keep the rows between within the Jacobian ratio.
@@ -318,6 +331,22 @@ void tieLShapedPatch(const Sheet& sheet, const std::vector<PointIndex>& loop,
   }
 }
 
+/// Per point of the sheet, the angle its faces span there (the sum of their corner angles): 360
+/// degrees inside a flat sheet, less at a sharp corner of its boundary.
+std::vector<double> spannedAngles(const Sheet& sheet) {
+  std::vector<double> angle(sheet.points.size(), 0.0);
+  for (const auto& face : sheet.faces) {
+    const int corners = face[3] == kNoPoint ? 3 : 4;
+    for (int c = 0; c < corners; ++c) {
+      const auto& at = sheet.points[face[std::size_t(c)]];
+      const Vec3 toNext = sheet.points[face[std::size_t((c + 1) % corners)]] - at;
+      const Vec3 toPrevious = sheet.points[face[std::size_t((c + corners - 1) % corners)]] - at;
+      angle[face[std::size_t(c)]] += angleDeg(toNext, toPrevious);
+    }
+  }
+  return angle;
+}
+
 /// Adds to `ties` the sides facing each other across the sheet's one-loop patches where both are
 /// made of whole junction curves (tieFacingSides): the opposite sides of a four-sided patch, and
 /// the two long sides of a three-sided one (a strip running into a tip: the sides meeting at the
@@ -337,6 +366,7 @@ void tieOppositeCurves(const Sheet& sheet, const QualitySettings& criteria, Curv
   } catch (const extract::NarrowSheetRefusal&) {
     return;
   }
+  const std::vector<double> spanned = spannedAngles(sheet);
   for (const extract::SheetPatch& patch : patches) {
     if (patch.loops.size() != 1) continue;
     const std::vector<PointIndex>& loop = patch.loops[0];
@@ -361,8 +391,20 @@ void tieOppositeCurves(const Sheet& sheet, const QualitySettings& criteria, Curv
           std::size_t(std::min_element(length.begin(), length.end()) - length.begin());
       const auto& a = sides[(shortest + 1) % 3];
       const auto& b = sides[(shortest + 2) % 3];
-      if (a && b && length[shortest] < std::min(a->length, b->length))
+      if (a && b && length[shortest] < std::min(a->length, b->length)) {
         tieFacingSides(sheet, *a, *b, criteria, ties);
+        const std::size_t tip = corners[(shortest + 2) % 3];
+        const auto wedgeSide = [&](std::size_t next) {
+          return NodeEdge{sheet.pointNodeIds[loop[tip]], sheet.pointNodeIds[loop[next]]};
+        };
+        if (sides[shortest])
+          ties.tips.push_back({sides[shortest]->keys,
+                               a->keys,
+                               b->keys,
+                               spanned[loop[tip]],
+                               {wedgeSide((tip + 1) % loop.size()),
+                                wedgeSide((tip + loop.size() - 1) % loop.size())}});
+      }
       continue;
     }
     TiedPatch tied;
@@ -384,20 +426,11 @@ void tieOppositeCurves(const Sheet& sheet, const QualitySettings& criteria, Curv
 }
 
 /// Adds to `graded` the points of the sheet's boundary loops where the sheet spans less than a
-/// quad's smallest angle (the sum of its faces' angles there), once per side of the wedge (the
-/// loop's next and previous points), with their wedgeRatio.
+/// quad's smallest angle (spannedAngles), once per side of the wedge (the loop's next and
+/// previous points), with their wedgeRatio.
 void gradeSharpCorners(const Sheet& sheet, const QualitySettings& criteria,
                        std::vector<std::pair<NodeEdge, double>>& graded) {
-  std::vector<double> angle(sheet.points.size(), 0.0);
-  for (const auto& face : sheet.faces) {
-    const int corners = face[3] == kNoPoint ? 3 : 4;
-    for (int c = 0; c < corners; ++c) {
-      const auto& at = sheet.points[face[std::size_t(c)]];
-      const Vec3 toNext = sheet.points[face[std::size_t((c + 1) % corners)]] - at;
-      const Vec3 toPrevious = sheet.points[face[std::size_t((c + corners - 1) % corners)]] - at;
-      angle[face[std::size_t(c)]] += angleDeg(toNext, toPrevious);
-    }
-  }
+  const std::vector<double> angle = spannedAngles(sheet);
   for (const Polyline& loop : sheet.boundaryLoops) {
     const std::size_t n = loop.points.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -542,7 +575,17 @@ SeamSampling seamSampling(const std::vector<FeModel>& models, const std::vector<
       raised = true;
     }
   if (raised) matchPairs();
-  const double aspect = settings.optimizeSettings.quality.maxAspectRatio;
+  const QualitySettings& criteria = settings.optimizeSettings.quality;
+  const double aspect = criteria.maxAspectRatio;
+  // A tip whose base has more pieces than its angle can fan into triangles within the smallest
+  // angle grows its rows by one piece each, from a triangle at the tip to the base: its long
+  // sides get as many pieces as the base, evenly (each rung's pieces as long as the tip's).
+  const auto growsRows = [&](const TipPatch& tip) {
+    if (!known(tip.base) || !known(tip.left) || !known(tip.right)) return false;
+    const long base = sum(tip.base);
+    return base >= 2 && tip.tipDeg < double(base) * criteria.minTriaAngleDeg;
+  };
+  std::set<const TipPatch*> grownTips;  // those whose sides were raised so
   for (int pass = 0; pass < kMatchingPasses; ++pass) {
     std::vector<std::pair<const CurveSide*, long>> raises;
     for (const CurveTies& ties : perPlan)
@@ -560,6 +603,14 @@ SeamSampling seamSampling(const std::vector<FeModel>& models, const std::vector<
           const long needed = long(std::ceil(patch.extent[k] / (aspect * across) - 1e-9));
           if (needed > sum(side)) raises.emplace_back(&side, needed - sum(side));
         }
+    for (const CurveTies& ties : perPlan)
+      for (const TipPatch& tip : ties.tips)
+        if (growsRows(tip))
+          for (const CurveSide* side : {&tip.left, &tip.right})
+            if (sum(*side) < sum(tip.base)) {
+              raises.emplace_back(side, sum(tip.base) - sum(*side));
+              grownTips.insert(&tip);
+            }
     if (raises.empty()) break;
     for (const auto& [side, more] : raises) raise(*side, more);
     matchPairs();
@@ -572,6 +623,8 @@ SeamSampling seamSampling(const std::vector<FeModel>& models, const std::vector<
       const auto [it, added] = sampling.grading.emplace(side, ratio);
       if (!added) it->second = std::min(it->second, ratio);
     }
+  for (const TipPatch* tip : grownTips)
+    for (const NodeEdge& side : tip->wedgeSides) sampling.grading.erase(side);
   // Stations: each stretch gets the count of the curve across it; the first tie of a curve whose
   // counts add up to the curve's own stays.
   for (const CurveTies& ties : perPlan)

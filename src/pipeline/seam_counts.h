@@ -15,7 +15,10 @@
 // Jacobian ratio, and a side of a four-sided patch whose pieces are longer than the aspect limit
 // times the pieces across it (two or more across; for the sides across a strip, its longest
 // rung counts: a rib web taller in its middle than at its ends) gets that many more, pass after
-// pass with the pairs matched again, until no side asks for more. And where a narrow sheet narrows
+// pass with the pairs matched again, until no side asks for more; so do the long sides of a
+// three-sided patch whose base has more pieces than its tip's angle can fan into triangles within
+// their smallest angle: as many as its base, evenly (not shrinking toward the tip), so that its
+// rows grow by one piece each from a triangle at the tip. And where a narrow sheet narrows
 // into a sharp corner, the junction curves along the two sides of that wedge get pieces shrinking
 // toward it (junction_nodes.h), on every part that has them. Internal to src/pipeline.
 #pragma once
