@@ -226,6 +226,20 @@ TEST(SeamSampling, AStripTallerInItsMiddleThanAtItsEndsGetsRowsWithinTheAspectLi
   EXPECT_EQ(web.acceptance.failing, 0u) << web.reason;
 }
 
+/// The remesh of a deck at one target size, default settings otherwise.
+RemeshReport remeshAtSize(FeModel& model, double size) {
+  RemeshSettings settings;
+  settings.targetSize = size;
+  return remeshDeck(model, settings);
+}
+
+/// Part 1's entry in a remesh report, or null.
+const RemeshedPart* partOne(const RemeshReport& report) {
+  for (const RemeshedPart& part : report.parts)
+    if (part.plan.part == 1) return &part;
+  return nullptr;
+}
+
 TEST(SeamSampling, TheSidesOfAnLShapedStripAddUpAcrossItSoThatItIsTwoGrids) {
   // An L-shaped strip (part 1, z = 0) with arms 2 wide, 20 long outside and 18 inside, in 1 mm
   // quads, every side a seam of its own: panels in its inner corner (parts 2 and 7, meeting on
@@ -261,12 +275,8 @@ TEST(SeamSampling, TheSidesOfAnLShapedStripAddUpAcrossItSoThatItIsTwoGrids) {
       test::addShell(model, shell++, 2, {node(i, j), node(i + 1, j), node(i + 1, j + 1)});
       test::addShell(model, shell++, 7, {node(i, j), node(i + 1, j + 1), node(i, j + 1)});
     }
-  RemeshSettings settings;
-  settings.targetSize = 4.0;
-  const RemeshReport report = remeshDeck(model, settings);
-  const RemeshedPart* strip = nullptr;
-  for (const RemeshedPart& part : report.parts)
-    if (part.plan.part == 1) strip = &part;
+  const RemeshReport report = remeshAtSize(model, 4.0);
+  const RemeshedPart* strip = partOne(report);
   ASSERT_NE(strip, nullptr);
   EXPECT_EQ(strip->status, PartStatus::Remeshed) << strip->reason;
   EXPECT_EQ(strip->acceptance.failing, 0u) << strip->reason;
@@ -299,12 +309,8 @@ TEST(SeamSampling, ATipWhoseBaseHasTwoPiecesGetsRowsInsteadOfAFan) {
   test::addShell(model, 4, 3, {4, 11, 5, 3});
   test::addShell(model, 5, 4, {1, 2, 8, 7});
   test::addShell(model, 6, 5, {1, 10, 9, 4});
-  RemeshSettings settings;
-  settings.targetSize = 4.0;
-  const RemeshReport report = remeshDeck(model, settings);
-  const RemeshedPart* tab = nullptr;
-  for (const RemeshedPart& part : report.parts)
-    if (part.plan.part == 1) tab = &part;
+  const RemeshReport report = remeshAtSize(model, 4.0);
+  const RemeshedPart* tab = partOne(report);
   ASSERT_NE(tab, nullptr);
   EXPECT_EQ(tab->status, PartStatus::Remeshed) << tab->reason;
   EXPECT_EQ(tab->acceptance.failing, 0u) << tab->reason;
