@@ -142,10 +142,10 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
   if (settings.splitFailingShare > 0.0 && quality.targetSize > 0.0)
     s.failingSplit = splitFailingQuads(mesh, quality, settings.splitFailingShare);
   s.invertedSplit = splitInvertedQuads(mesh, quality.degenerateCornerDeg);
+  s.quadSplitSeconds = secondsSince(q);
   // The last passes move points and split quads: a fold they leave (a sliver along a boundary edge
   // turned over as its neighbour quad is split) is cut out as the first ones were.
   s.foldsRefilled += refillFoldedRegions(mesh, original, quality);
-  s.quadSplitSeconds = secondsSince(q);
   s.totalSeconds = secondsSince(start);
   if (stats) *stats = s;
 }
