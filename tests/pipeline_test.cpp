@@ -511,26 +511,58 @@ TEST(Pipeline, AWingSkinIsRemeshedSideBySideWithinItsDistanceAtItsTrailingEdge) 
   EXPECT_TRUE(found);
 }
 
+/// freedlm.bdf part 46 alone, remeshed with the default settings but for the split of failing
+/// quads into triangles (splitFailingShare; 0: off).
+RemeshedPart freedlmTabs(const std::filesystem::path& path, double splitFailingShare) {
+  FeModel model = readDeck(path.string());
+  RemeshSettings settings;
+  settings.parts = {46};
+  settings.optimizeSettings.splitFailingShare = splitFailingShare;
+  const RemeshReport report = remeshDeck(model, settings);
+  if (report.parts.size() != 1u) throw std::logic_error("one part planned");
+  return report.parts[0];
+}
+
 TEST(Pipeline, ANarrowPartMeshedFromItsBoundaryIsRetriedWithRowsHalfAsLong) {
   // freedlm.bdf part 46: eight small triangles between the wing's ribs, every sheet narrow and
-  // meshed from its boundary. Its first rows leave elements failing, with the nodes of their
-  // free sides placed either way (the second following short pieces across); the retry meshes
-  // the sheets again with nodes half as far apart along their free sides, which passes.
+  // meshed from its boundary. Without the split of failing quads, its first rows leave elements
+  // failing, with the nodes of their free sides placed either way (the second following short
+  // pieces across); the retry meshes the sheets again with nodes half as far apart along their
+  // free sides, which passes.
   VOXREMESH_REQUIRE_SHARED_DECK(path, "freedlm.bdf");
-  const RemeshedPart part = remeshOnePart(path.string(), 46);
+  const RemeshedPart part = freedlmTabs(path, 0.0);
   EXPECT_EQ(part.status, PartStatus::Retried) << part.reason;
   EXPECT_EQ(part.attempts, 3);
   EXPECT_LE(part.acceptance.failingShare,
             RemeshSettings{}.optimizeSettings.quality.maxFailingShare);
 }
 
-TEST(Pipeline, AFoldTheLastOptimisationPassesLeaveIsCutOut) {
-  // freedlm.bdf at twice its median edge: the fuselage skin (part 1) fails its first size and is
-  // retried at a quarter of it, its seams still sampled at the deck's size. Where a seam piece
-  // 9.5 long cuts a curved edge, a split of the long faces leaves a sliver on that chord, and the
-  // last passes (fitting to the original, splitting failing quads) turn it over past the chord.
-  // Cut out again after them, the skin's first round passes, and with it the parts whose meshes
-  // passed beside it (7, 10 and 48), which a kept skin made keep its nodes.
+TEST(Pipeline, AQuadARowLeavesFailingIsSplitWhateverTheTriangleShare) {
+  // The same tabs with the default settings: the quads the first rows leave failing are split
+  // into triangles that pass, though the rows are mostly triangles already (far above the 3 %
+  // share that bounds the split on a volume's mesh), and the part passes without the retry: rows
+  // choose fewer failing elements before fewer triangles.
+  VOXREMESH_REQUIRE_SHARED_DECK(path, "freedlm.bdf");
+  const RemeshedPart part = freedlmTabs(path, RemeshSettings{}.optimizeSettings.splitFailingShare);
+  EXPECT_EQ(part.status, PartStatus::Remeshed) << part.reason;
+  EXPECT_LE(part.attempts, 2);
+  EXPECT_EQ(part.acceptance.failingShare, 0.0);
+}
+
+TEST(Pipeline, FreedlmAtTwiceItsSizeRemeshesItsSkinCapsAndTabs) {
+  // freedlm.bdf at twice its median edge, one run for two rules:
+  // - The fuselage skin (part 1) fails its first size and is retried at a quarter of it, its
+  //   seams still sampled at the deck's size. Where a seam piece 9.5 long cuts a curved edge, a
+  //   split of the long faces leaves a sliver on that chord, and the last passes (fitting to the
+  //   original, splitting failing quads) turn it over past the chord. Cut out again after them,
+  //   the skin's first round passes, and with it the parts whose meshes passed beside it (7, 10
+  //   and 48), which a kept skin made keep its nodes.
+  // - The rib caps (24), the tabs (46) and the webs and fillers beside them (21, 22, 39, 40, 42)
+  //   are narrow sheets meshed in rows from their seams' nodes. A row's faces are chosen for
+  //   fewer failing elements first, fewer triangles only then; the quads the optimisation still
+  //   leaves failing (a tab's quad at a Jacobian ratio of 0.56, a cap's at 141 degrees) are split
+  //   into triangles that pass, whatever the triangle share (the rows are mostly triangles, so a
+  //   share would allow none), and those parts pass.
   VOXREMESH_REQUIRE_SHARED_DECK(path, "freedlm.bdf");
   FeModel model = readDeck(path.string());
   RemeshSettings settings;
@@ -542,7 +574,8 @@ TEST(Pipeline, AFoldTheLastOptimisationPassesLeaveIsCutOut) {
     remeshed.insert(part.plan.part);
     EXPECT_EQ(part.acceptance.folded, 0u) << "part " << part.plan.part;
   }
-  for (const Id part : {1, 7, 10, 48}) EXPECT_EQ(remeshed.count(part), 1u) << "part " << part;
+  for (const Id part : {1, 7, 10, 48, 21, 22, 24, 39, 40, 42, 46})
+    EXPECT_EQ(remeshed.count(part), 1u) << "part " << part;
 }
 
 /// Remeshes a one-part model at the given target size with the default settings.

@@ -60,7 +60,10 @@ double boundaryMeshSize(const QuadMesh& mesh, double spacing) {
 /// NarrowSheetSettings::followShortPieces); the hard points inside the sheet are snapped to nodes
 /// inside the mesh (a grid's); then, when `optimize` and settings.optimize, optimised at the
 /// spacing as a volume's mesh is, its minimum length judged as the part's acceptance judges it
-/// (at boundaryMeshSize).
+/// (at boundaryMeshSize); where the split of failing quads is on (splitFailingQuads), it splits
+/// every quad whose triangles fail fewer criteria, whatever the triangle share: the rows chose
+/// their faces for fewer failing elements first and fewer triangles only then (polygon_quads.h),
+/// and their optimisation keeps that order.
 /// Throws extract::NarrowSheetRefusal when the sheet cannot be meshed so, or a hard point finds
 /// no node inside the mesh within `spacing`.
 QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
@@ -90,6 +93,7 @@ QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
     optimizeSettings.quality.targetSize = spacing;
     // The other criteria, the distance and the edits' scale stay at the spacing.
     optimizeSettings.quality.minLengthFactor *= boundaryMeshSize(mesh, spacing) / spacing;
+    if (optimizeSettings.splitFailingShare > 0.0) optimizeSettings.splitFailingShare = 1.0;
     optimizeQuadMesh(mesh, original, optimizeSettings);
   }
   return mesh;
