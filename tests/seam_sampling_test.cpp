@@ -1,6 +1,7 @@
 // Seam sampling over the deck (pipeline/seam_counts.h): the growth ratio of the pieces toward a
 // sharp corner of a narrow sheet follows the quality criteria, on the curves along its sides; the
-// curves facing each other across a narrow strip get the same counts, curve by curve.
+// curves facing each other across a narrow strip get the same counts, curve by curve; a curve
+// facing several gets stations at their joints.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +13,7 @@
 
 #include "pipeline/seam_counts.h"
 #include "support/test_support.h"
+#include "voxremesh/io.h"
 #include "voxremesh/pipeline.h"
 #include "voxremesh/quality.h"
 
@@ -315,4 +317,23 @@ TEST(SeamSampling, ATipWhoseBaseHasTwoPiecesGetsRowsInsteadOfAFan) {
   EXPECT_EQ(tab->status, PartStatus::Remeshed) << tab->reason;
   EXPECT_EQ(tab->acceptance.failing, 0u) << tab->reason;
   EXPECT_GE(tab->quads, 1u) << tab->reason;
+}
+
+TEST(SeamSampling, ASeamFacingSeveralPastThePatchsCornerGetsStationsAtTheirJoints) {
+  // freedlm.bdf at its size: part 26 (a fairing) has a strip 1.5 wide along its keel, a curve of
+  // its own 54 long, which faces its seams with part 27 (pieces 3.85 long, then 2.15) and, past
+  // the keel's end, one more seam round the patch's corner, whose closest points are all the
+  // keel's end. That curve left the keel without stations: its even pieces (2.35) slanted the
+  // rows up to 6 mm along against the strip's 1.5 across, and 26 and 27 beside it were kept. It
+  // counts with the last stretch now, and the keel's nodes face the joints across. Part 7's
+  // bottom seam meets curves past both its ends (up the rib's sides), which would crowd its end
+  // stretches: they spread over the stretches next to them, and it still passes.
+  VOXREMESH_REQUIRE_SHARED_DECK(path, "freedlm.bdf");
+  FeModel model = readDeck(path.string());
+  const RemeshReport report = remeshDeck(model, RemeshSettings{});
+  for (const RemeshedPart& part : report.parts) {
+    if (part.plan.part == 7 || part.plan.part == 26 || part.plan.part == 27) {
+      EXPECT_NE(part.status, PartStatus::Kept) << part.plan.part << ": " << part.reason;
+    }
+  }
 }

@@ -40,12 +40,13 @@ struct TiedCurve {
 
 /// A junction curve facing a side of several whole curves across a patch: the points of it
 /// closest to the joints between those curves (its stations, in its order from the point with
-/// node ID `firstNode`), and the curve across each stretch between them.
+/// node ID `firstNode`), and the curves across each stretch between them (one, or with those
+/// beyond an end of the curve, which face its end alone).
 struct StationTie {
   NodeEdge curve;
   Id firstNode = 0;
   std::vector<std::array<double, 3>> stations;
-  std::vector<NodeEdge> across;  ///< stations.size() + 1 keys
+  std::vector<CurveSide> across;  ///< stations.size() + 1 entries
 };
 
 /// A four-sided patch of a narrow sheet, for the aspect limit: its sides in order round the loop
@@ -103,14 +104,45 @@ long sampledPieces(const Sheet& sheet, const Polyline& curve,
   return std::max(1L, nodes - 1);
 }
 
-/// Adds to `ties` the stations of curve `single` facing the whole curves `across` (in order along
-/// the side across, two or more): the points of `single` closest to the joints between them. None
-/// when the curves across do not face its stretches one by one in order.
-void addStations(const Sheet& sheet, const Polyline& single, const std::vector<std::size_t>& across,
-                 CurveTies& ties) {
-  std::vector<std::array<double, 3>> points;
-  for (const PointIndex p : single.points) points.push_back(sheet.points[p]);
-  const extract::PolylineParam line(points, false);
+/// The length of a curve of the sheet.
+double curveLength(const Sheet& sheet, const Polyline& curve) {
+  double length = 0.0;
+  for (std::size_t i = 0; i + 1 < curve.points.size(); ++i)
+    length += distance(sheet.points[curve.points[i]], sheet.points[curve.points[i + 1]]);
+  return length;
+}
+
+/// A stretch of a curve facing whole curves across a patch (addStations): its ends (arc lengths
+/// along the curve), the curves across it and their length.
+struct StationStretch {
+  double from = 0.0, to = 0.0;
+  CurveSide keys;
+  double acrossLength = 0.0;
+  bool beyond = false;  ///< it holds curves beyond an end of the curve
+
+  /// The shorter of its length and that across it over the longer (1: alike).
+  double closeness() const {
+    const double along = to - from;
+    return std::min(along, acrossLength) / std::max(along, acrossLength);
+  }
+  /// This stretch and the next one, `next`, as one.
+  StationStretch joined(const StationStretch& next) const {
+    StationStretch both = *this;
+    both.to = next.to;
+    both.keys.insert(both.keys.end(), next.keys.begin(), next.keys.end());
+    both.acrossLength += next.acrossLength;
+    both.beyond = beyond || next.beyond;
+    return both;
+  }
+};
+
+/// The stretches of a curve (`line`, its points) facing the whole curves `across` of the sheet
+/// (in order along the side across) one by one: each between the closest points of a curve's
+/// ends, a curve whose closest points are all one end of the curve (beyond that end) with the
+/// stretch next to it. None when they do not face it one by one in order (a gap, an overlap, a
+/// curve facing a point inside).
+std::vector<StationStretch> stretchesFacing(const Sheet& sheet, const extract::PolylineParam& line,
+                                            const std::vector<std::size_t>& across) {
   const auto paramOf = [&](const std::array<double, 3>& p) {
     double away = 0.0;
     return line.closestParam({p[0], p[1], p[2]}, away);
@@ -127,27 +159,80 @@ void addStations(const Sheet& sheet, const Polyline& single, const std::vector<s
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
   std::sort(order.begin(), order.end(),
             [&](std::size_t a, std::size_t b) { return spans[a].first < spans[b].first; });
-  StationTie tie{curveKey(sheet, single), sheet.pointNodeIds[single.points.front()], {}, {}};
   const double apart = 1e-6 * line.length();
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    const auto& [from, to] = spans[order[k]];
-    if (to - from < apart) return;
-    if (k > 0) {
-      const double joint = spans[order[k - 1]].second;
-      if (std::abs(from - joint) > apart) return;  // a gap or an overlap: not one by one
-      tie.stations.push_back(extract::toArray(line.pointAt(0.5 * (from + joint))));
+  std::vector<StationStretch> stretches;
+  StationStretch beforeStart;  // curves beyond the start, for the first stretch
+  for (const std::size_t k : order) {
+    const auto& [from, to] = spans[k];
+    const Polyline& curve = sheet.junctionCurves[across[k]];
+    StationStretch* stretch = nullptr;
+    if (to - from < apart) {
+      if (to < apart && stretches.empty())
+        stretch = &beforeStart;
+      else if (from > line.length() - apart && !stretches.empty())
+        stretch = &stretches.back();
+      else
+        return {};  // a curve across facing one point inside
+      stretch->beyond = true;
+    } else {
+      if (!stretches.empty() && std::abs(from - stretches.back().to) > apart)
+        return {};  // a gap or an overlap
+      stretches.push_back(stretches.empty() ? beforeStart : StationStretch{});
+      stretch = &stretches.back();
+      stretch->from = from;
+      stretch->to = to;
     }
-    tie.across.push_back(curveKey(sheet, sheet.junctionCurves[across[order[k]]]));
+    stretch->keys.push_back(curveKey(sheet, curve));
+    stretch->acrossLength += curveLength(sheet, curve);
   }
-  ties.stations.push_back(std::move(tie));
+  return stretches;
 }
 
-/// The length of a curve of the sheet.
-double curveLength(const Sheet& sheet, const Polyline& curve) {
-  double length = 0.0;
-  for (std::size_t i = 0; i + 1 < curve.points.size(); ++i)
-    length += distance(sheet.points[curve.points[i]], sheet.points[curve.points[i + 1]]);
-  return length;
+/// Joins each stretch holding curves beyond an end whose closeness is under `bound` with the
+/// neighbour that brings it closer, worst first, until none is or one stretch is left.
+void spreadBeyondEnds(std::vector<StationStretch>& stretches, double bound) {
+  while (stretches.size() >= 2) {
+    std::size_t worst = stretches.size();
+    for (std::size_t k = 0; k < stretches.size(); ++k)
+      if (stretches[k].beyond && stretches[k].closeness() < bound &&
+          (worst == stretches.size() || stretches[k].closeness() < stretches[worst].closeness()))
+        worst = k;
+    if (worst == stretches.size()) return;
+    std::size_t first = worst == 0 ? 0 : worst - 1;  // joined with the next one
+    if (worst > 0 && worst + 1 < stretches.size() &&
+        stretches[worst].joined(stretches[worst + 1]).closeness() >
+            stretches[worst - 1].joined(stretches[worst]).closeness())
+      first = worst;
+    stretches[first] = stretches[first].joined(stretches[first + 1]);
+    stretches.erase(stretches.begin() + std::ptrdiff_t(first + 1));
+  }
+}
+
+/// Adds to `ties` the stations of curve `single` facing the whole curves `across` (in order along
+/// the side across, two or more): the points of `single` closest to the joints between them. A
+/// curve across lying beyond an end of `single` (its closest points all that end: the side across
+/// runs on past the patch's corner there) joins the stretch next to it; where that stretch's
+/// length and that of the curves across it then differ by more than the square root of
+/// minJacobianRatio (the rows' trapezoids halfway between a rectangle and the limit, as
+/// taperPieces keeps them), it joins the neighbour that brings them closer, and so on, so that
+/// those curves' pieces spread. None when the curves across do not face its stretches one by one
+/// in order, or one stretch is left.
+void addStations(const Sheet& sheet, const Polyline& single, const std::vector<std::size_t>& across,
+                 const QualitySettings& criteria, CurveTies& ties) {
+  std::vector<std::array<double, 3>> points;
+  for (const PointIndex p : single.points) points.push_back(sheet.points[p]);
+  const extract::PolylineParam line(points, false);
+  std::vector<StationStretch> stretches = stretchesFacing(sheet, line, across);
+  spreadBeyondEnds(stretches, std::sqrt(criteria.minJacobianRatio));
+  if (stretches.size() < 2) return;
+  StationTie tie{curveKey(sheet, single), sheet.pointNodeIds[single.points.front()], {}, {}};
+  for (std::size_t k = 0; k < stretches.size(); ++k) {
+    if (k > 0)
+      tie.stations.push_back(
+          extract::toArray(line.pointAt(0.5 * (stretches[k - 1].to + stretches[k].from))));
+    tie.across.push_back(stretches[k].keys);
+  }
+  ties.stations.push_back(std::move(tie));
 }
 
 /// A side of a patch, from one corner of its loop to the next, made of whole junction curves.
@@ -249,9 +334,9 @@ void tieFacingSides(const Sheet& sheet, const PatchSide& a, const PatchSide& b,
   }
   ties.pairs.emplace_back(a.keys, b.keys);
   if (a.curves.size() == 1 && b.curves.size() > 1)
-    addStations(sheet, sheet.junctionCurves[a.curves[0]], b.curves, ties);
+    addStations(sheet, sheet.junctionCurves[a.curves[0]], b.curves, criteria, ties);
   if (b.curves.size() == 1 && a.curves.size() > 1)
-    addStations(sheet, sheet.junctionCurves[b.curves[0]], a.curves, ties);
+    addStations(sheet, sheet.junctionCurves[b.curves[0]], a.curves, criteria, ties);
 }
 
 /// The largest distance of a point of polyline `a` from polyline `b`, or of `b` from `a`.
@@ -294,8 +379,8 @@ void addReflexStation(const Sheet& sheet, const Polyline& single, const Vec3& co
   StationTie tie{curveKey(sheet, single),
                  sheet.pointNodeIds[single.points.front()],
                  {extract::toArray(line.pointAt(station))},
-                 {curveKey(sheet, firstBefore ? first : second),
-                  curveKey(sheet, firstBefore ? second : first)}};
+                 {CurveSide{curveKey(sheet, firstBefore ? first : second)},
+                  CurveSide{curveKey(sheet, firstBefore ? second : first)}}};
   ties.stations.push_back(std::move(tie));
 }
 
@@ -625,17 +710,16 @@ SeamSampling seamSampling(const std::vector<FeModel>& models, const std::vector<
     }
   for (const TipPatch* tip : grownTips)
     for (const NodeEdge& side : tip->wedgeSides) sampling.grading.erase(side);
-  // Stations: each stretch gets the count of the curve across it; the first tie of a curve whose
+  // Stations: each stretch gets the count of the curves across it; the first tie of a curve whose
   // counts add up to the curve's own stays.
   for (const CurveTies& ties : perPlan)
     for (const StationTie& tie : ties.stations) {
       SeamStations stations{tie.firstNode, tie.stations, {}};
       long total = 0;
-      for (const NodeEdge& key : tie.across) {
-        const auto it = count.find(key);
-        if (it == count.end()) break;
-        stations.pieces.push_back(it->second);
-        total += it->second;
+      for (const CurveSide& side : tie.across) {
+        if (!known(side)) break;
+        stations.pieces.push_back(sum(side));
+        total += sum(side);
       }
       if (stations.pieces.size() == tie.across.size() && total == count.at(tie.curve))
         sampling.stations.emplace(tie.curve, std::move(stations));

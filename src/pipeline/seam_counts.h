@@ -10,7 +10,9 @@
 // sides are as many curves whose joints face each other, each curve gets the count of the one
 // across it; else the side with fewer pieces gets more on its curve with the longest pieces until
 // the totals match, and a single curve facing several gets stations, nodes facing their joints,
-// each stretch with the count of the curve across. Then a curve between rungs of different
+// each stretch with the count of the curve across (where the side across runs on past the
+// patch's corner, the curves beyond the single curve's end count with the stretch next to it,
+// spread over more stretches while their lengths differ past the Jacobian ratio's square root). Then a curve between rungs of different
 // lengths (a tapering strip) gets as many pieces as keep its rows' trapezoids within the
 // Jacobian ratio, and a side of a four-sided patch whose pieces are longer than the aspect limit
 // times the pieces across it (two or more across; for the sides across a strip, its longest
