@@ -1,5 +1,6 @@
 # `cmake --install build [--prefix DIR]`: the voxremesh command line tool, the library
-# (voxremesh::core), its public headers and a CMake package, so that another project can use
+# (voxremesh::core), its public headers, the default quality criteria file and a CMake package,
+# so that another project can use
 #   find_package(voxremesh REQUIRED)
 #   target_link_libraries(my_tool PRIVATE voxremesh::core)
 include(GNUInstallDirs)
@@ -19,6 +20,9 @@ install(TARGETS voxremesh_core EXPORT voxremeshTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/voxremesh DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# The default quality criteria, a starting point for a user's own (criteria_file.h).
+install(FILES ${PROJECT_SOURCE_DIR}/share/criteria/default.txt
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/voxremesh/criteria)
 install(EXPORT voxremeshTargets NAMESPACE voxremesh:: DESTINATION ${VOXREMESH_CMAKE_DIR})
 
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/voxremeshConfig.cmake.in

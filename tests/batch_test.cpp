@@ -247,6 +247,41 @@ TEST(Batch, RemeshAndQualityChainsFillTheQualityColumns) {
   EXPECT_EQ(summary["jobs"].items[2]["quality_failure_share"].type, json::Json::Type::Null);
 }
 
+TEST(Batch, ARemeshJobTakesACriteriaFileBesideTheJobFile) {
+  // The sample rail at size 5, once with the default criteria and once with a file (named
+  // relative to the job file's folder) that allows no warping past 0.5 degrees: the summary's
+  // failing count follows the file. A file that is not there fails its job alone.
+  const fs::path dir = scratchDir("batch_criteria");
+  const std::string sample = samplePart().string();
+  writeText(dir / "criteria" / "flat.txt", "warping 0 0.1 0.2 0.5 5\n");
+  writeText(dir / "jobs.json",
+            "{\"jobs\": [\n"
+            "  {\"task\": \"remesh\", \"input\": \"" +
+                sample +
+                "\", \"output\": \"default.k\", \"settings\": {\"size\": 5}},\n"
+                "  {\"task\": \"remesh\", \"input\": \"" +
+                sample +
+                "\", \"output\": \"flat.k\", \"settings\": {\"size\": 5, \"criteria\": "
+                "\"criteria/flat.txt\"}},\n"
+                "  {\"task\": \"remesh\", \"input\": \"" +
+                sample +
+                "\", \"output\": \"missing.k\", \"settings\": {\"size\": 5, \"criteria\": "
+                "\"criteria/missing.txt\"}}\n"
+                "]}\n");
+  const BatchFile file = readBatchFile(dir / "jobs.json");
+  ASSERT_EQ(file.jobs.size(), 3u);
+  EXPECT_EQ(file.jobs[1].settings.at("criteria"), (dir / "criteria" / "flat.txt").string());
+  BatchOptions options;
+  options.threads = 2;
+  const std::vector<BatchResult> results = runBatch(file.jobs, options);
+  ASSERT_EQ(results[0].status, "ok") << results[0].message;
+  ASSERT_TRUE(results[0].qualityFailures && results[1].qualityFailures);
+  EXPECT_GT(*results[1].qualityFailures, *results[0].qualityFailures) << results[1].message;
+  EXPECT_EQ(results[2].status, "failed");
+  EXPECT_TRUE(contains(results[2].message, "missing.txt")) << results[2].message;
+  EXPECT_FALSE(fs::exists(dir / "missing.k"));
+}
+
 TEST(BatchCli, OneBrokenJobThenResume) {
   const fs::path dir = scratchDir("batch_cli");
   writeText(dir / "jobs.json", mixedJobs(samplePart()));

@@ -93,6 +93,18 @@ TEST(CliQuality, TableAndVtuWithDistance) {
        {"\"warping_deg\"", "\"jacobian_ratio\"", "\"scaled_jacobian\"", "\"min_length\"",
         "\"fail_mask\"", "\"pass\"", "\"distance\"", "NumberOfCells=\"1865\""})
     EXPECT_NE(vtu.find(name), std::string::npos) << name;
+  // The quality index per element: 0 for an element within every "good" threshold, at least 1
+  // for one failing a criterion.
+  const std::vector<double> index = vtuCellArray(vtu, "quality_index");
+  const std::vector<double> pass = vtuCellArray(vtu, "pass");
+  ASSERT_EQ(index.size(), 1865u);
+  ASSERT_EQ(pass.size(), 1865u);
+  for (std::size_t f = 0; f < index.size(); ++f) {
+    if (pass[f] == 0.0) {
+      EXPECT_GE(index[f], 1.0) << f;
+    }
+  }
+  EXPECT_NE(r.out.find("quality index: mean"), std::string::npos) << r.out;
 }
 
 TEST(CliQuality, LimitOverridesChangeTheCounts) {
@@ -108,6 +120,43 @@ TEST(CliQuality, LimitOverridesChangeTheCounts) {
   ASSERT_EQ(loose.exitCode, 3) << loose.err;
   EXPECT_EQ(criterion(parseJson(loose.out), "warping")["failing"].number, 0.0);
   EXPECT_EQ(criterion(parseJson(loose.out), "warping")["limit"].number, 90.0);
+}
+
+TEST(CliQuality, ACriteriaFileSetsTheLimitsAndFlagsOverrideIt) {
+  VOXREMESH_REQUIRE_SHARED_DECK(deck, "bracket.k");
+  const fs::path dir = scratchDir("cli_quality_criteria");
+  writeText(dir / "oem.txt", "# an OEM's stricter warping\nwarping 0 2 4 8 20 2\n");
+  const CliRun strict =
+      runCliSplit("quality " + quoted(deck) + " --json --criteria " + quoted(dir / "oem.txt"));
+  ASSERT_EQ(strict.exitCode, 3) << strict.err;
+  EXPECT_EQ(criterion(parseJson(strict.out), "warping")["limit"].number, 8.0);
+  const CliRun plain = runCliSplit("quality " + quoted(deck) + " --json");
+  EXPECT_GT(criterion(parseJson(strict.out), "warping")["failing"].number,
+            criterion(parseJson(plain.out), "warping")["failing"].number);
+  // The index weighs the warping penalties twice and counts them from 2 degrees on.
+  EXPECT_GT(parseJson(strict.out)["quality_index"].number,
+            parseJson(plain.out)["quality_index"].number);
+  const CliRun overridden = runCliSplit("quality " + quoted(deck) + " --json --criteria " +
+                                        quoted(dir / "oem.txt") + " --warping 30");
+  EXPECT_EQ(criterion(parseJson(overridden.out), "warping")["limit"].number, 30.0);
+  // The criteria in effect, as a file that reads back to them.
+  const CliRun printed =
+      runCliSplit("quality --print-criteria --criteria " + quoted(dir / "oem.txt"));
+  ASSERT_EQ(printed.exitCode, 0) << printed.err;
+  EXPECT_NE(printed.out.find("warping                    0         2         4         8"),
+            std::string::npos)
+      << printed.out;
+  writeText(dir / "printed.txt", printed.out);
+  const CliRun again =
+      runCliSplit("quality --print-criteria --criteria " + quoted(dir / "printed.txt"));
+  EXPECT_EQ(again.out, printed.out);
+  // A bad file: exit 1, its line named, nothing written.
+  writeText(dir / "bad.txt", "warping 0 2 4 8 20\nskew 0 10 30\n");
+  const CliRun bad = runCliSplit("quality " + quoted(deck) + " --criteria " +
+                                 quoted(dir / "bad.txt") + " --vtu " + quoted(dir / "q.vtu"));
+  EXPECT_EQ(bad.exitCode, 1);
+  EXPECT_NE(bad.err.find("bad.txt:2"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir / "q.vtu"));
 }
 
 TEST(CliQuality, BadInputAndSettingsFailWithoutOutput) {

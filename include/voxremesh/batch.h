@@ -27,9 +27,12 @@
 //                                            placeholders above and {input}
 //   }
 //   SETTINGS = { "size": 4, "voxel": 1.5, "part": 4075, "band": 3, "feature_angle": 30,
-//                "invalid_angle": 60, "format": "k" }   (all optional; format: of the output)
+//                "invalid_angle": 60, "format": "k", "criteria": "oem.txt" }
+//              (all optional; format: of the output)
 //   remesh jobs: size is the target element size (default: per part its median edge), part the
-//   one part to remesh (default: all parts with shells), voxel is refused.
+//   one part to remesh (default: all parts with shells), voxel is refused, criteria a quality
+//   criteria file (criteria_file.h; relative to the job file's folder) for the optimisation,
+//   the acceptance and the summary's failing share.
 // Jobs are numbered from 0 in the order of the file after expanding globs and variants.
 // A job file that is not valid JSON or breaks this structure is refused as a whole
 // (InputError naming the file and line); a setting of the wrong type or out of range, a missing

@@ -163,7 +163,8 @@ struct PartAcceptance {
   std::size_t quads = 0, trias = 0;
   std::size_t failing = 0;  ///< elements failing a criterion (distance and folds included)
   double failingShare = 0.0;
-  double distance = 0.0;  ///< two-sided, sampled inside the faces
+  double qualityIndex = 0.0;  ///< mean over the elements (quality.h, "Quality index")
+  double distance = 0.0;      ///< two-sided, sampled inside the faces
   double distanceLimit = 0.0;
   std::size_t folded = 0;             ///< against neighbours or against the original
   std::size_t degenerateCorners = 0;  ///< quads with a corner of (almost) 180 degrees

@@ -74,6 +74,14 @@
 //
 // Per mesh: the share of triangles among all elements, and the distance between the mesh and an
 // original surface in both directions (surfaceDistance, below).
+//
+// Quality index (as HyperMesh's): per criterion that applies to an element (and is not excused,
+// as a sharp corner's triangle is), a penalty from its value and the criterion's thresholds
+// (IndexThresholds, with the limit as "fail"): 0 up to good, rising linearly to 0.8 at warn, to
+// 1 at the limit and to 10 at worst, and on beyond worst at the slope from the limit to worst
+// (indexPenalty). Folded counts 10 for a folded element. The element's index is the weighted sum
+// of its penalties, so an element within every limit scores at most the sum of the weights; a
+// mesh's index is the mean over its elements.
 #pragma once
 
 #include <array>
@@ -88,6 +96,59 @@
 namespace voxremesh {
 
 struct Sheet;
+
+/// The criteria of the per-element summary, in report order.
+enum class Criterion : std::uint8_t {
+  Warping,
+  AspectRatio,
+  QuadMinAngle,
+  QuadMaxAngle,
+  TriaMinAngle,
+  TriaMaxAngle,
+  Skew,
+  JacobianRatio,
+  ScaledJacobian,
+  Taper,
+  MinLength,
+  DegenerateCorner,
+  Folded,    ///< needs the element's neighbours (foldedFaces)
+  Distance,  ///< needs the original surface
+};
+/// The criteria elementFailures decides from an element's own corners (Warping ..
+/// DegenerateCorner).
+constexpr int kElementCriterionCount = 12;
+/// All criteria; Folded and Distance are decided by assessQuality from the whole mesh.
+constexpr int kCriterionCount = 14;
+
+/// The quality index's thresholds of one criterion besides its limit (QualitySettings): the value
+/// where it is ideal, where it is still good, where it warns and where it is worst, and its
+/// weight in the index (see "Quality index" at the top of the file). Ordered: for a maximum
+/// (warping) ideal <= good <= warn <= worst, for a minimum the other way; a limit outside warn ..
+/// worst moves them to it.
+/// Lengths are factors as the limit's (minimum length: of the size the element is judged at;
+/// distance: of the distance size).
+struct IndexThresholds {
+  double ideal = 0.0, good = 0.0, warn = 0.0, worst = 0.0;
+  double weight = 1.0;
+};
+
+/// The default index thresholds, per Criterion (the limits are QualitySettings' defaults).
+inline constexpr std::array<IndexThresholds, kCriterionCount> kDefaultIndexThresholds{{
+    {0.0, 5.0, 10.0, 30.0, 1.0},       // warping
+    {1.0, 2.0, 4.0, 10.0, 1.0},        // aspect
+    {90.0, 75.0, 60.0, 20.0, 1.0},     // quad_min_angle
+    {90.0, 105.0, 120.0, 160.0, 1.0},  // quad_max_angle
+    {60.0, 50.0, 40.0, 15.0, 1.0},     // tria_min_angle
+    {60.0, 75.0, 100.0, 150.0, 1.0},   // tria_max_angle
+    {0.0, 10.0, 30.0, 60.0, 1.0},      // skew
+    {1.0, 0.9, 0.7, 0.3, 1.0},         // jacobian_ratio
+    {1.0, 0.8, 0.5, 0.1, 1.0},         // scaled_jacobian
+    {0.0, 0.2, 0.5, 0.9, 1.0},         // taper
+    {1.0, 0.8, 0.6, 0.2, 1.0},         // min_length (x the judged size)
+    {90.0, 120.0, 170.0, 180.0, 1.0},  // degenerate_corner
+    {0.0, 0.0, 0.0, 1.0, 1.0},         // folded (1 when folded; its limit is 0)
+    {0.0, 0.05, 0.15, 1.0, 1.0},       // distance (x the distance size)
+}};
 
 /// Thresholds of the quality criteria. Defaults as DESIGN.md's table. A metric fails when it is
 /// beyond its limit (strictly greater than a maximum, strictly less than a minimum).
@@ -121,12 +182,23 @@ struct QualitySettings {
   /// A mesh passes when at most this share of its elements fails a criterion (and no element is
   /// folded or has a degenerate corner, the triangle share and the distance are within limits).
   double maxFailingShare = 0.05;
+  /// Per Criterion, the quality index's thresholds besides the limit (IndexThresholds).
+  std::array<IndexThresholds, kCriterionCount> index = kDefaultIndexThresholds;
 };
 
 /// Checks that every field of the settings is finite and in its meaningful range (angles within
-/// 0..180 with min <= max, ratios and factors >= 0, shares within 0..1, targetSize >= 0).
+/// 0..180 with min <= max, ratios and factors >= 0, shares within 0..1, targetSize >= 0), and
+/// that each criterion's index thresholds are ordered and their weight >= 0.
 /// Throws SettingError naming the field and its value.
 void checkQualitySettings(const QualitySettings& settings);
+
+/// The quality index's penalty of one value of a criterion (see "Quality index" at the top of
+/// the file): 0 up to `t.good`, then linear through 0.8 at `t.warn`, 1 at `limit` and 10 at
+/// `t.worst`, and on beyond at that last slope; equal thresholds make a step, and a limit outside
+/// warn .. worst moves them to it. `isMaximum` says which way is worse (a maximum criterion grows
+/// worse with the value). NaN gives 10.
+/// Precondition: the thresholds are ordered (checkQualitySettings).
+double indexPenalty(double value, const IndexThresholds& t, double limit, bool isMaximum);
 
 /// The metrics of one element (definitions at the top of the file).
 struct ElementQuality {
@@ -153,32 +225,16 @@ std::vector<ElementQuality> elementQualities(const QuadMesh& mesh);
 /// The median length of the distinct edges of a mesh (0 without edges).
 double medianEdgeLength(const QuadMesh& mesh);
 
-/// The criteria of the per-element summary, in report order.
-enum class Criterion : std::uint8_t {
-  Warping,
-  AspectRatio,
-  QuadMinAngle,
-  QuadMaxAngle,
-  TriaMinAngle,
-  TriaMaxAngle,
-  Skew,
-  JacobianRatio,
-  ScaledJacobian,
-  Taper,
-  MinLength,
-  DegenerateCorner,
-  Folded,    ///< needs the element's neighbours (foldedFaces)
-  Distance,  ///< needs the original surface
-};
-/// The criteria elementFailures decides from an element's own corners (Warping ..
-/// DegenerateCorner).
-constexpr int kElementCriterionCount = 12;
-/// All criteria; Folded and Distance are decided by assessQuality from the whole mesh.
-constexpr int kCriterionCount = 14;
-
 /// A short name of a criterion ("warping", "aspect", "quad_min_angle", ...), also the JSON key
 /// and the .vtu array name of its metric.
 const char* criterionName(Criterion criterion);
+
+/// True when a larger value of the criterion is worse (its limit is a maximum).
+bool isMaximumCriterion(Criterion criterion);
+
+/// The field of QualitySettings that holds a criterion's limit (a factor of the judged size for
+/// the minimum length, of the distance size for the distance); null for folded (none allowed).
+double QualitySettings::*limitField(Criterion criterion);
 
 /// The element criteria (the first kElementCriterionCount) an element with these metrics fails
 /// under the settings: bit c set when Criterion c applies to the element (quads: all but the
@@ -273,6 +329,8 @@ struct QualityReport {
   double triangleShare = 0.0;
   std::vector<ElementQuality> elementValues;   ///< per face
   std::vector<std::uint32_t> elementFailures;  ///< per face: bit c set when Criterion c fails
+  std::vector<double> qualityIndex;            ///< per face (see "Quality index")
+  double meanQualityIndex = 0.0;               ///< over the faces (0 without faces)
   std::optional<SurfaceDistance> distance;     ///< when an original was given
   double distanceLimit = 0.0;                  ///< maxDistanceFactor x targetSize
   /// Per face: the size its minimum length is judged against, targetSize or the width of the

@@ -35,7 +35,8 @@ std::vector<MeshCurve> deckChannelCurves(const FeModel& deck, Id part,
 /// every metric under its quality.h name (warping_deg, aspect_ratio, min_angle_deg,
 /// max_angle_deg, skew_deg, jacobian_ratio, jacobian_ratio_gauss, scaled_jacobian, taper,
 /// min_length), judged_size (the size the minimum length is judged against: the target size or
-/// a narrower channel's width), fail_mask (bit c set when Criterion c fails) and pass (1 or 0).
+/// a narrower channel's width), fail_mask (bit c set when Criterion c fails), pass (1 or 0) and
+/// quality_index (quality.h, "Quality index").
 /// Values that are not finite become +-1e30, which ParaView can read.
 std::vector<FieldData> qualityCellFields(const QualityReport& report);
 

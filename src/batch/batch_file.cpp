@@ -276,6 +276,9 @@ class FileReader {
         for (const auto& [key, value] : variants[v]) {
           expanded.settings[key] = scalarText(*value);
           expanded.settingIsText[key] = value->type == Json::Type::String;
+          // A file a setting names lies, as the inputs do, relative to the job file's folder.
+          if (key == "criteria" && expanded.settingIsText[key])
+            expanded.settings[key] = resolve(expanded.settings[key]).string();
         }
         std::string jobName = name.empty() ? input.stem().string() : name;
         if (inputs.size() > 1 && !name.empty()) jobName += "-" + input.stem().string();

@@ -15,6 +15,7 @@
 
 #include "voxremesh/action_chain.h"
 #include "voxremesh/batch.h"
+#include "voxremesh/criteria_file.h"
 #include "voxremesh/errors.h"
 #include "voxremesh/io.h"
 #include "voxremesh/pipeline.h"
@@ -32,6 +33,7 @@ struct JobSettings {
   Id part = 0;
   double band = 3.0, featureAngle = 45.0, invalidAngle = 60.0;
   std::optional<DeckFormat> format;
+  std::optional<std::string> criteria;  ///< a criteria file (criteria_file.h), remesh jobs
 };
 
 double numberSetting(const BatchJob& job, const std::string& key) {
@@ -63,9 +65,13 @@ JobSettings checkSettings(const BatchJob& job) {
     } else if (key == "format") {
       if (!job.settingIsText.at(key)) throw SettingError("setting format must be a string");
       settings.format = formatFromName(text);
+    } else if (key == "criteria") {
+      if (!job.settingIsText.at(key)) throw SettingError("setting criteria must be a file name");
+      settings.criteria = text;
     } else {
-      throw SettingError("unknown setting \"" + key +
-                         "\" (size, voxel, part, band, feature_angle, invalid_angle, format)");
+      throw SettingError(
+          "unknown setting \"" + key +
+          "\" (size, voxel, part, band, feature_angle, invalid_angle, format, criteria)");
     }
   }
   if (settings.size && settings.voxel) throw SettingError("give either size or voxel, not both");
@@ -118,10 +124,12 @@ void runRemesh(const BatchJob& job, const JobSettings& settings, BatchResult& re
   remesh.sheets.featureAngleDeg = settings.featureAngle;
   remesh.volume.bandWidthVoxels = settings.band;
   remesh.volume.invalidAngleDeg = settings.invalidAngle;
+  if (settings.criteria) readCriteriaFile(*settings.criteria, remesh.optimizeSettings.quality);
   const RemeshReport report = remeshDeck(deck, remesh);
   std::size_t assessed = 0, failing = 0;
   double distance = 0.0;
-  for (const PartQuality& part : assessRemeshedParts(original, deck, report, {}, remesh.sheets)) {
+  for (const PartQuality& part : assessRemeshedParts(
+           original, deck, report, remesh.optimizeSettings.quality, remesh.sheets)) {
     assessed += part.elementsAfter;
     failing += part.failing();
     distance = std::max(distance, part.maxDistance());

@@ -206,6 +206,9 @@ void runSaveChain(ChainState& state, const ActionCall& call) {
 void runNothing(ChainState&, const ActionCall&) {}
 
 const OptionDef kFile{"file", OptionType::Text, "", "the file", true};
+const OptionDef kCriteria{"criteria", OptionType::Text, "",
+                          "a quality criteria file (include/voxremesh/criteria_file.h) for the "
+                          "limits (default: share/criteria/default.txt's)"};
 const OptionDef kFormat{"format", OptionType::Text, "",
                         "format name instead of the extension (k, bdf, inp, obj, ...)"};
 
@@ -259,7 +262,8 @@ const std::vector<ActionDef> kActions = {
        "split quads still failing into two triangles that fail less, while the triangle share "
        "stays at or under this (0: none)"},
       {"original", OptionType::Text, "",
-       "a deck holding the original part (default: the part the mesh was made from)"}},
+       "a deck holding the original part (default: the part the mesh was made from)"},
+      kCriteria},
      detail::runOptimize,
      "The original surface is the part's shells as voxelize saw them; for a mesh of a volume read\n"
      "from a .vdb file, the part from the topmost deck that has it, or from original=FILE.\n"
@@ -276,11 +280,12 @@ const std::vector<ActionDef> kActions = {
       {"json", OptionType::Text, "", "also write the report as JSON to this file"},
       {"vtu", OptionType::Text, "",
        "also write the elements with their metrics (cell data) and the distance to the original "
-       "(point data) to this .vtu file"}},
+       "(point data) to this .vtu file"},
+      kCriteria},
      detail::runQuality,
      "Prints the table of voxremesh quality (limits at their defaults, see voxremesh help\n"
-     "quality). With original= the same part (part=, or the mesh's part) is taken from that "
-     "deck.\n"},
+     "quality, or criteria=FILE's). With original= the same part (part=, or the mesh's part) is\n"
+     "taken from that deck.\n"},
     {"write",
      "write the top item: a deck or mesh by extension, a volume as .vdb",
      "file",

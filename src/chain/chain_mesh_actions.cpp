@@ -8,6 +8,7 @@
 
 #include "chain/chain_stack.h"
 #include "io/atomic_file.h"
+#include "voxremesh/criteria_file.h"
 #include "voxremesh/errors.h"
 #include "voxremesh/io.h"
 #include "voxremesh/optimize.h"
@@ -70,6 +71,7 @@ int count(const ActionCall& call, const std::string& option) {
 void runOptimize(ChainState& state, const ActionCall& call) {
   const ChainItem& source = topOf(state, Kind::Mesh);
   OptimizeSettings settings;
+  if (call.has("criteria")) readCriteriaFile(call.text("criteria"), settings.quality);
   settings.quality.targetSize = positiveSize(call, "size", source.targetSize);
   settings.warpingDeg = call.number("warping");
   settings.warpingIterations = count(call, "iterations");
@@ -113,6 +115,7 @@ void runQuality(ChainState& state, const ActionCall& call) {
     if (it->kind == Kind::Mesh || it->kind == Kind::Deck) item = &*it;
   if (!item) throw std::runtime_error("needs a quad mesh or a deck on the stack; read one first");
   QualitySettings settings;
+  if (call.has("criteria")) readCriteriaFile(call.text("criteria"), settings);
   settings.targetSize = positiveSize(call, "size", item->kind == Kind::Mesh ? item->targetSize : 0);
   checkQualitySettings(settings);
 

@@ -196,6 +196,7 @@ PartAcceptance acceptPartMesh(const QuadMesh& mesh, const QuadMesh& original,
     if (failures) ++a.failing;
   }
   a.failingShare = a.elements ? double(a.failing) / double(a.elements) : 0.0;
+  a.qualityIndex = report.meanQualityIndex;
   const TopologyCounts before = topologyCounts(original), after = topologyCounts(mesh);
   a.componentsBefore = before.components;
   a.componentsAfter = after.components;

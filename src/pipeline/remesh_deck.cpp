@@ -615,6 +615,7 @@ std::string remeshReportJson(const RemeshReport& report) {
         {"target_size", part.plan.targetSize},
         {"voxel_size", part.voxelSize},
         {"failing_share", a.failingShare},
+        {"quality_index", a.qualityIndex},
         {"distance", a.distance},
         {"distance_limit", a.distanceLimit},
         {"area_before", a.areaBefore},

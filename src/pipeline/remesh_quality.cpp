@@ -72,7 +72,8 @@ std::vector<FieldData> qualityCellFields(const QualityReport& report) {
                                    {"min_length", {}},
                                    {"judged_size", {}},
                                    {"fail_mask", {}},
-                                   {"pass", {}}};
+                                   {"pass", {}},
+                                   {"quality_index", {}}};
   for (FieldData& field : fields) field.values.reserve(report.elements);
   for (std::size_t f = 0; f < report.elements; ++f) {
     const ElementQuality& q = report.elementValues[f];
@@ -88,7 +89,8 @@ std::vector<FieldData> qualityCellFields(const QualityReport& report) {
                              q.minLength,
                              report.judgedSize[f],
                              double(report.elementFailures[f]),
-                             report.elementFailures[f] == 0 ? 1.0 : 0.0};
+                             report.elementFailures[f] == 0 ? 1.0 : 0.0,
+                             report.qualityIndex[f]};
     for (std::size_t k = 0; k < fields.size(); ++k)
       fields[k].values.push_back(finiteForVtu(values[k]));
   }

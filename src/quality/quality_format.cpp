@@ -85,6 +85,9 @@ std::string formatQualityTable(const QualityReport& report) {
                   d.maxToOriginal, d.meanToOriginal, d.maxFromOriginal, d.meanFromOriginal);
     out += line;
   }
+  std::snprintf(line, sizeof line, "  quality index: mean %.4g per element\n",
+                report.meanQualityIndex);
+  out += line;
   out += report.passes() ? "\nresult: pass\n" : "\nresult: FAIL\n";
   return out;
 }
@@ -125,6 +128,8 @@ std::string qualityReportJson(const QualityReport& report) {
   appendJsonNumber(out, report.triangleShare);
   out += ",\"tria_share_limit\":";
   appendJsonNumber(out, report.settings.maxTriangleShare);
+  out += ",\"quality_index\":";
+  appendJsonNumber(out, report.meanQualityIndex);
   out += ",\"distance\":";
   if (report.distance) {
     const SurfaceDistance& d = *report.distance;

@@ -74,6 +74,17 @@ bool fails(double value, double limit, bool isMaximum) {
 
 }  // namespace
 
+bool isMaximumCriterion(Criterion c) {
+  const int index = static_cast<int>(c);
+  return index < kElementCriterionCount ? kRules[index].isMaximum : true;
+}
+
+double QualitySettings::*limitField(Criterion c) {
+  if (c == Criterion::Folded) return nullptr;
+  if (c == Criterion::Distance) return &QualitySettings::maxDistanceFactor;
+  return kRules[static_cast<int>(c)].limit;
+}
+
 const char* criterionName(Criterion c) {
   const int index = static_cast<int>(c);
   return index < kElementCriterionCount ? kRules[index].name
@@ -187,6 +198,12 @@ std::vector<double> judgedSizes(const QuadMesh& mesh, const std::vector<ElementQ
   return sizes;
 }
 
+/// Adds a criterion's weighted penalty (indexPenalty) to an element's quality index.
+void addPenalty(double& index, double value, const IndexThresholds& t, double limit,
+                bool isMaximum) {
+  index += t.weight * indexPenalty(value, t, limit, isMaximum);
+}
+
 /// The criteria a triangle filling a sharp corner fails by the corner's angle alone.
 bool forcedByCorner(Criterion c) {
   return c == Criterion::AspectRatio || c == Criterion::TriaMinAngle || c == Criterion::Skew ||
@@ -235,6 +252,7 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
   report.elementValues = elementQualities(mesh);
   report.elements = mesh.faces.size();
   report.elementFailures.assign(report.elements, 0);
+  report.qualityIndex.assign(report.elements, 0.0);
   report.judgedSize = judgedSizes(mesh, report.elementValues, s, channels);
   for (double size : report.judgedSize)
     if (size < s.targetSize) ++report.narrowChannelElements;
@@ -263,7 +281,13 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
       const double limit = criterion == Criterion::MinLength
                                ? s.minLengthFactor * report.judgedSize[f]
                                : summary.limit;
-      if (fails(value, limit, r.isMaximum) && !(fillsCorner[f] && forcedByCorner(criterion))) {
+      if (fillsCorner[f] && forcedByCorner(criterion)) continue;  // excused
+      const double scale = criterion == Criterion::MinLength && report.judgedSize[f] > 0.0
+                               ? report.judgedSize[f]
+                               : 1.0;
+      addPenalty(report.qualityIndex[f], value / scale, s.index[std::size_t(c)], limit / scale,
+                 r.isMaximum);
+      if (fails(value, limit, r.isMaximum)) {
         ++summary.failing;
         report.elementFailures[f] |= 1u << c;
       }
@@ -289,6 +313,13 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
   }
   addMeshCriterion(report, Criterion::Distance, report.distanceLimit, faceDistance, far);
   for (std::size_t f = 0; f < report.elements; ++f) {
+    addPenalty(report.qualityIndex[f], folded[f], s.index[std::size_t(Criterion::Folded)], 0.0,
+               true);
+    if (original)
+      addPenalty(report.qualityIndex[f], faceDistance[f] / distanceSize,
+                 s.index[std::size_t(Criterion::Distance)], s.maxDistanceFactor, true);
+  }
+  for (std::size_t f = 0; f < report.elements; ++f) {
     if (cornerCount(mesh.faces[f]) == 4)
       ++report.quads;
     else
@@ -296,6 +327,9 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
     if (report.elementFailures[f] != 0) ++report.failingAny;
   }
   if (report.elements) {
+    double indexSum = 0.0;
+    for (const double index : report.qualityIndex) indexSum += index;
+    report.meanQualityIndex = indexSum / double(report.elements);
     report.failingAnyShare = double(report.failingAny) / double(report.elements);
     report.triangleShare = double(report.triangles) / double(report.elements);
   }

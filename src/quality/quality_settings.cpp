@@ -29,6 +29,27 @@ void requireOrder(const char* low, double lowValue, const char* high, double hig
   }
 }
 
+/// Checks that a criterion's index thresholds are finite, ordered (ideal, good, warn, worst
+/// growing worse) and weighted by a finite weight >= 0.
+void checkIndexThresholds(Criterion c, const QualitySettings& s) {
+  const IndexThresholds& t = s.index[static_cast<std::size_t>(c)];
+  const std::string name = std::string("quality index of ") + criterionName(c);
+  const double sign = isMaximumCriterion(c) ? 1.0 : -1.0;
+  const double values[] = {t.ideal, t.good, t.warn, t.worst};
+  const char* const names[] = {"ideal", "good", "warn", "worst"};
+  for (std::size_t k = 0; k < 4; ++k) {
+    if (!std::isfinite(values[k]))
+      throw SettingError(name + ": " + names[k] + " = " + std::to_string(values[k]) +
+                         " is not a finite number");
+    if (k > 0 && sign * values[k] < sign * values[k - 1])
+      throw SettingError(name + ": " + names[k] + " = " + std::to_string(values[k]) +
+                         (sign > 0 ? " is below " : " is above ") + names[k - 1] + " = " +
+                         std::to_string(values[k - 1]) + " (a " +
+                         (sign > 0 ? "larger" : "smaller") + " value is worse)");
+  }
+  requireRange((name + " weight").c_str(), t.weight, 0.0, 1e300);
+}
+
 }  // namespace
 
 void checkQualitySettings(const QualitySettings& s) {
@@ -50,6 +71,7 @@ void checkQualitySettings(const QualitySettings& s) {
   requireRange("maxTriangleShare", s.maxTriangleShare, 0.0, 1.0);
   requireRange("maxDistanceFactor", s.maxDistanceFactor, 0.0, kHuge);
   requireRange("distanceSize", s.distanceSize, 0.0, kHuge);
+  for (int c = 0; c < kCriterionCount; ++c) checkIndexThresholds(static_cast<Criterion>(c), s);
 }
 
 double medianEdgeLength(const QuadMesh& mesh) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli_common.h"
+#include "voxremesh/criteria_file.h"
 #include "voxremesh/io.h"
 #include "voxremesh/quality.h"
 #include "voxremesh/remesh_quality.h"
@@ -19,7 +20,8 @@ namespace {
 
 const char* const kUsage =
     "voxremesh quality DECK [--original ORIG] [--json] [--vtu OUT.vtu] [--part PID] [--size H]\n"
-    "       [--format F] [limit options]";
+    "       [--format F] [--criteria FILE] [limit options]\n"
+    "       voxremesh quality --print-criteria [--criteria FILE] [limit options]";
 
 const char* const kHelp =
     "Measures the FE quality of the shells of DECK (all parts, or --part PID): per element the\n"
@@ -42,6 +44,10 @@ const char* const kHelp =
     "  --size H              target element size for the length and distance limits (default:\n"
     "                        the median edge length of the assessed shells)\n"
     "  --format F            read DECK and ORIG as format F instead of by extension\n"
+    "  --criteria FILE       the limits, quality index thresholds and weights of a criteria file\n"
+    "                        (format: include/voxremesh/criteria_file.h; the defaults:\n"
+    "                        share/criteria/default.txt); the limit options below override it\n"
+    "  --print-criteria      print the criteria in effect as a criteria file, and stop\n"
     "limits (defaults in brackets):\n"
     "  --warping DEG [15]  --aspect R [5]  --quad-min-angle DEG [45]  --quad-max-angle DEG [135]\n"
     "  --tria-min-angle DEG [30]  --tria-max-angle DEG [120]  --skew DEG [40]\n"
@@ -89,6 +95,8 @@ int runQuality(const std::vector<std::string>& args) {
                                        {"--vtu", true},
                                        {"--part", true},
                                        {"--format", true},
+                                       {"--criteria", true},
+                                       {"--print-criteria", false},
                                        {"--size", true},
                                        {"--warping", true},
                                        {"--aspect", true},
@@ -106,20 +114,28 @@ int runQuality(const std::vector<std::string>& args) {
                                        {"--distance", true},
                                        {"--degenerate-corner", true},
                                        {"--max-failing", true}},
-                                      1, 1, kUsage);
+                                      0, 1, kUsage);
+  const bool printCriteria = parsed.has("--print-criteria");
+  if (parsed.positional.size() != (printCriteria ? 0u : 1u))
+    throw UsageError(printCriteria ? "--print-criteria takes no DECK" : "missing DECK", kUsage);
 
   QualitySettings settings;
+  if (const auto criteria = parsed.value("--criteria")) readCriteriaFile(*criteria, settings);
   ReadOptions readOptions;
   Id part = 0;
   parseOptionValues(kUsage, [&] {
     for (const LimitOption& option : kLimits)
       if (const auto text = parsed.value(option.name))
         settings.*(option.field) = parseNumber(option.name, *text);
-    settings.jacobianAtGaussPoints = parsed.has("--jacobian-at-gauss-points");
+    if (parsed.has("--jacobian-at-gauss-points")) settings.jacobianAtGaussPoints = true;
     checkQualitySettings(settings);
     if (const auto format = parsed.value("--format")) readOptions.format = formatFromName(*format);
     if (const auto text = parsed.value("--part")) part = parseInteger("--part", *text);
   });
+  if (printCriteria) {
+    printOutput(formatCriteria(settings));
+    return 0;
+  }
 
   const std::string& path = parsed.positional[0];
   Warnings warnings;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli_common.h"
+#include "voxremesh/criteria_file.h"
 #include "voxremesh/io.h"
 #include "voxremesh/pipeline.h"
 #include "voxremesh/progress.h"
@@ -23,7 +24,7 @@ namespace {
 const char* const kUsage =
     "voxremesh remesh IN -o OUT [--size H] [--part-size PID=H,...] [--parts P1,P2,...]\n"
     "       [--feature-angle DEG] [--retries N] [--threads N] [--report REPORT.json]\n"
-    "       [--vtu QUALITY.vtu] [--no-optimize] [--quiet]";
+    "       [--vtu QUALITY.vtu] [--criteria FILE] [--no-optimize] [--quiet]";
 
 const char* const kHelp =
     "Remeshes every shell part of IN (or those of --parts) through a narrow-band volume: sheets,\n"
@@ -31,8 +32,8 @@ const char* const kHelp =
     "snapping, sheets joined again at their junctions, then quad optimisation (clean-up, rhombic\n"
     "collapse, relaxation on the original surface, triangle merging, searches and reconnections\n"
     "round failing elements, warping removal, folds cut out and refilled, failing quads split\n"
-    "into triangle pairs while triangles stay at or under 3 %, folds they leave cut out again);\n"
-    "parts in parallel.\n"
+    "into triangle pairs while triangles stay at or under 3 % (on sheets meshed from their\n"
+    "boundary: whatever the share), folds they leave cut out again); parts in parallel.\n"
     "Every other part, element and keyword is written back untouched; new node and element IDs\n"
     "lie above all IDs of IN. Hard points, nodes that other keywords use as points (beam, mass,\n"
     "spring and rigid element ends, welds, point loads, SPC and history nodes), stay nodes of the\n"
@@ -70,6 +71,10 @@ const char* const kHelp =
     "  --vtu QUALITY.vtu      the remeshed elements with every quality metric, a failure bit\n"
     "                         mask and a pass flag as cell data, and each node's distance to\n"
     "                         the original as point data (as voxremesh quality --vtu)\n"
+    "  --criteria FILE        the quality limits the optimisation and the acceptance use, and\n"
+    "                         the quality index's thresholds and weights (format:\n"
+    "                         include/voxremesh/criteria_file.h; the defaults:\n"
+    "                         share/criteria/default.txt)\n"
     "  --no-optimize          write the extracted quads without the optimisation\n"
     "  --quiet                no progress line (it shows on a terminal only anyway)\n";
 
@@ -221,12 +226,15 @@ int runRemesh(const std::vector<std::string>& args) {
                                        {"--threads", true},
                                        {"--report", true},
                                        {"--vtu", true},
+                                       {"--criteria", true},
                                        {"--no-optimize", false},
                                        {"--quiet", false}},
                                       1, 1, kUsage);
   const auto output = parsed.value("-o");
   if (!output || output->empty()) throw UsageError("missing -o OUT", kUsage);
-  const RemeshSettings settings = remeshSettings(parsed);
+  RemeshSettings settings = remeshSettings(parsed);
+  if (const auto criteria = parsed.value("--criteria"))
+    readCriteriaFile(*criteria, settings.optimizeSettings.quality);
   formatFromPath(*output);  // an unknown extension fails before any work
   const auto vtu = parsed.value("--vtu");
   refuseOverwritingInput(parsed.positional[0], *output, "-o");
@@ -253,8 +261,10 @@ int runRemesh(const std::vector<std::string>& args) {
       progress.update("quality", "deck", 1.0);
       std::vector<PartQuality> quality;
       tbb::task_arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic)
-          .execute(
-              [&] { quality = assessRemeshedParts(*original, deck, report, {}, settings.sheets); });
+          .execute([&] {
+            quality = assessRemeshedParts(*original, deck, report,
+                                          settings.optimizeSettings.quality, settings.sheets);
+          });
       writeRemeshQualityVtu(deck, quality, *vtu);
     }
     if (const auto path = parsed.value("--report")) writeRemeshReport(report, *path);
