@@ -297,9 +297,8 @@ struct OptimizeSettings {
   /// Rotate edges of failing faces after the first improveFailingElements pass (and improve again
   /// when any rotated).
   bool rotateEdges = true;
-  /// Sweeps of each improveFailingElements pass (before and after warping removal; 0: none). On
-  /// the bracket at 4.5 mm (with the former 30-degree feature angle): 1 sweep 5.3 % failing,
-  /// 3 sweeps 4.5 %; more gained nothing.
+  /// Sweeps of each improveFailingElements pass (before and after warping removal; 0: none): a
+  /// point moved in one sweep opens moves for its neighbours in the next.
   int improveSweeps = 3;
   /// Rounds of reconnectFailingFaces after the last improveFailingElements pass (0: none).
   int reconnectRounds = 8;
@@ -312,23 +311,18 @@ struct OptimizeSettings {
   double zeroAreaFactor = 1e-4;
   /// Edges longer than splitLengthFactor x targetSize whose midpoint lies farther than
   /// splitChordFactor x targetSize from the original than their ends do are split first
-  /// (splitLongEdges; splitLengthFactor 0: none, else >= 1). Bracket at 4.5 mm: 1.90 % failing,
-  /// 2.9 % triangles, distance 1.08 (limit 1.125) against 2.13 %, 1.6 %, 1.54 without; at its
-  /// median 2.50 % / 1.15 against 2.61 % / 1.34; sample rail unchanged; wheel 8.24 % against
-  /// 7.91 % (its long edges are mostly in strips bridged across holes).
+  /// (splitLongEdges; splitLengthFactor 0: none, else >= 1): a long chord across a curved region
+  /// leaves the original uncovered, which the distance criterion counts.
   double splitLengthFactor = 1.75;
   double splitChordFactor = 0.01;
   /// Edges shorter than shortEdgeFactor x targetSize are collapsed in the clean-up. Off by default:
-  /// on the bracket 0.2 lowers the failing share from 17.1 % to 14.9 % but raises the triangle
-  /// share from 2.5 % to 4.0 % (each collapse turns two quads into triangles).
+  /// each collapse turns two quads into triangles, which the later steps handle better.
   double shortEdgeFactor = 0.0;
   /// Warping removal moves no point farther than warpingMoveFactor x targetSize from where it
   /// started (relaxation left it on the original surface), so the surface stays close.
   double warpingMoveFactor = 0.1;
-  /// Collapse faces folded along a curve in the clean-up (CleanupSettings::foldedCurves). Fewer
-  /// failing elements, more triangles: on the bracket 16.2 % failing and 2.5 % triangles with it,
-  /// 17.5 % and 1.1 % without; on the wheel (many feature lines) 18.7 % / 8.8 % against 21.1 % /
-  /// 3.2 %.
+  /// Collapse faces folded along a curve in the clean-up (CleanupSettings::foldedCurves): fewer
+  /// failing elements at the cost of more triangles (most on parts with many feature lines).
   bool collapseFoldedCurves = true;
 };
 

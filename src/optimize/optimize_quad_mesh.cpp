@@ -101,9 +101,9 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
     relax();
   }
   // The pass over failing elements before the warping removal and again after it: the flattened
-  // quads open moves the first pass could not take (bracket: 7.6 % failing with the first pass
-  // only, 5.4 % with both). It takes only moves that leave fewer criteria failing around the
-  // point, warping included, so the warped count does not grow back on balance.
+  // quads open moves the first pass could not take. It takes only moves that leave fewer
+  // criteria failing around the point, warping included, so the warped count does not grow back
+  // on balance.
   const bool improve = settings.improveSweeps > 0 && quality.targetSize > 0.0;
   auto improveFailing = [&] {
     const Clock::time_point t = Clock::now();

@@ -25,18 +25,15 @@ using opt::Vec3;
 using namespace geom;  // NOLINT: the vector operators
 
 /// The pattern searches of a try are shorter than improveFailingElements': they stop at steps of
-/// a sixteenth of an edge (not a sixty-fourth) and make at most 3 moves per step length (not 8).
-/// Bracket (bench_optimize): 0.53 % failing at 4.5 mm, 0.77 % at 5 mm, 1.07 % at 4 mm, against
-/// 0.63, 1.01 and 0.84 % with the full searches at about twice the time of the step; wheel
-/// (remesh) 3.66 % against 3.63 %.
+/// a sixteenth of an edge (not a sixty-fourth) and make at most 3 moves per step length (not 8):
+/// a try only has to show whether a connectivity is worth keeping; the full searches of the
+/// later passes refine the points of the one kept.
 constexpr double kTrialSmallestStep = 0.06;
 constexpr int kTrialMovesPerStep = 3;
 
 /// After one sweep of searches in every try of a face, only the tries that score best go on to
-/// the remaining sweeps. With 3 (against all of them): bracket (bench_optimize) 0.58 % failing
-/// at 4.5 mm against 0.53 %, 0.83 % at 5 mm against 0.77 %, 4 and 6 mm unchanged; wheel (remesh)
-/// 3.70 % against 3.66 %, with its largest distance 1.75 mm against 1.83 mm; about a fifth fewer
-/// face scores over the whole optimisation (a quarter on the wheel).
+/// the remaining sweeps: a try far behind after one sweep seldom wins, and the others cost most
+/// of the step's face scores.
 constexpr std::size_t kContinuedTries = 3;
 
 /// The faces round the points round a failing face: what a change of connectivity at the face,
