@@ -270,8 +270,11 @@ std::size_t splitFailingQuads(QuadMesh& mesh, const QualitySettings& settings,
 /// face can pass every criterion of its own. The one whose neighbourhood then scores best is kept
 /// when it fails fewer criteria than the neighbourhood did. Neighbourhoods changed in a round do
 /// not overlap; rounds repeat until none changes or `maxRounds` is reached, then as many again
-/// over the faces with a degenerate corner only. The tries of one face
-/// run in parallel and are chosen in order: the result does not depend on the thread count.
+/// over the faces with a degenerate corner only. The faces of a round are split greedily, in
+/// index order, into classes whose neighbourhoods share no point; the faces of a class are tried
+/// in parallel (and the tries of one face too) and their changes applied in face order, the
+/// classes one after another, a face whose neighbourhood an earlier class changed waiting for the
+/// next round: the result does not depend on the thread count.
 /// @return the number of neighbourhoods changed
 /// Throws std::invalid_argument for an empty surface, negative rounds or sweeps,
 /// settings.targetSize <= 0 or a bad mesh; SettingError for bad settings.

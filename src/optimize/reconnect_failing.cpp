@@ -322,6 +322,116 @@ void applyTrial(QuadMesh& mesh, const Neighbourhood& n, const Trial& trial,
   }
 }
 
+/// What the tries at a face need besides the mesh: the original, the criteria, the curves and the
+/// number of sweeps of pattern searches per try.
+struct TryContext {
+  const ReferenceSurface& original;
+  const QualitySettings& settings;
+  const std::vector<std::vector<Vec3>>& fixedOnCurve;
+  const std::vector<PolylineIndex>& curves;
+  int sweeps = 0;
+};
+
+/// A face to try, its neighbourhood and the criteria it fails.
+struct Candidate {
+  std::uint32_t face = 0;
+  std::uint32_t failures = 0;
+  Neighbourhood neighbourhood;
+};
+
+/// The tries at face c.face (reconnectFailingFaces): the neighbourhood as it is and after each
+/// edit, each searched; the best of those within the distance allowed and with no more folds,
+/// when it fails fewer criteria than the neighbourhood did. Reads the mesh only.
+std::optional<Trial> bestTrialAt(const QuadMesh& mesh, const opt::Topology& t, const Candidate& c,
+                                 const TryContext& context) {
+  const QualitySettings& settings = context.settings;
+  const Neighbourhood& n = c.neighbourhood;
+  const std::uint32_t degenerate = 1u << unsigned(Criterion::DegenerateCorner);
+  const std::uint32_t shortOrSliver = (1u << unsigned(Criterion::MinLength)) |
+                                      (1u << unsigned(Criterion::TriaMinAngle)) | degenerate;
+  opt::Score before;
+  for (const std::uint32_t g : n.faces) before += opt::faceScore(mesh, mesh.faces[g], settings);
+  std::vector<Edit> edits{Edit{}};
+  const std::vector<Edit> others =
+      editsAt(mesh, t, c.face, context.original, (c.failures & shortOrSliver) != 0);
+  edits.insert(edits.end(), others.begin(), others.end());
+  // The tries are independent: in parallel, the best chosen in edit order. First one sweep of
+  // searches in each; then the rest of the sweeps in the best few only (the first of equal
+  // ones), kContinuedTries.
+  std::vector<Trial> trials(edits.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, edits.size(), 1),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                        trials[i] = buildTrial(mesh, t, n, edits[i]);
+                        searchTrial(trials[i], context.original, settings, context.fixedOnCurve,
+                                    context.curves, std::min(context.sweeps, 1));
+                      }
+                    });
+  std::vector<std::size_t> order(trials.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const opt::Score &x = trials[a].score, &y = trials[b].score;
+    return x.failures != y.failures ? x.failures < y.failures : x.penalty < y.penalty;
+  });
+  if (order.size() > kContinuedTries) order.resize(kContinuedTries);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size(), 1),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                        Trial& trial = trials[order[i]];
+                        searchTrial(trial, context.original, settings, context.fixedOnCurve,
+                                    context.curves, context.sweeps - 1);
+                        trial.chord =
+                            opt::chordError(trial.mesh, trial.mesh.faces, context.original);
+                        trial.folds = foldedCount(trial.mesh);
+                      }
+                    });
+  // Only tries whose faces stay as close to the original as half the distance limit, or as the
+  // neighbourhood's faces were, take part; a face with a degenerate corner, which no acceptance
+  // allows, may use the whole limit.
+  std::vector<Face> present;
+  for (const std::uint32_t g : n.faces) present.push_back(mesh.faces[g]);
+  const double limitShare = (c.failures & degenerate) != 0 ? 1.0 : 0.5;
+  const double allowed = std::max(opt::chordError(mesh, present, context.original),
+                                  limitShare * settings.maxDistanceFactor * settings.targetSize);
+  // Nor may a try fold more faces than the neighbourhood had folded (a flipped face can pass
+  // every criterion of its own); those are counted only when a try has a fold.
+  std::optional<std::size_t> foldsBefore;
+  const auto foldsAllowed = [&](const Trial& trial) {
+    if (trial.folds == 0) return true;
+    if (!foldsBefore) foldsBefore = foldedCount(buildTrial(mesh, t, n, Edit{}).mesh);
+    return trial.folds <= *foldsBefore;
+  };
+  std::sort(order.begin(), order.end());
+  std::optional<std::size_t> best;
+  for (const std::size_t i : order)
+    if (trials[i].chord <= allowed && foldsAllowed(trials[i]) &&
+        (!best || trials[i].score.betterThan(trials[*best].score)))
+      best = i;
+  if (!best || !(trials[*best].score.failures < before.failures)) return std::nullopt;
+  return std::move(trials[*best]);
+}
+
+/// Splits candidates (in face order) into classes whose neighbourhoods share no point, greedily:
+/// each goes to the first class none of whose neighbourhoods it meets. The tries of one class see
+/// nothing of each other's changes.
+std::vector<std::vector<Candidate>> independentClasses(std::vector<Candidate> candidates,
+                                                       std::size_t pointCount) {
+  std::vector<std::vector<std::uint32_t>> classesAt(pointCount);
+  std::vector<std::vector<Candidate>> classes;
+  std::vector<std::uint8_t> taken;
+  for (Candidate& c : candidates) {
+    taken.assign(classes.size() + 1, 0);
+    for (const CornerIndex v : c.neighbourhood.allPoints)
+      for (const std::uint32_t k : classesAt[v]) taken[k] = 1;
+    std::uint32_t k = 0;
+    while (taken[k]) ++k;
+    if (k == classes.size()) classes.emplace_back();
+    for (const CornerIndex v : c.neighbourhood.allPoints) classesAt[v].push_back(k);
+    classes[k].push_back(std::move(c));
+  }
+  return classes;
+}
+
 }  // namespace
 
 std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& original,
@@ -336,9 +446,11 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
   opt::checkMesh(mesh);
   const std::vector<std::vector<Vec3>> fixedOnCurve = opt::fixedPointsOnCurves(mesh);
   const std::vector<PolylineIndex> curves = opt::indexCurves(mesh);
+  const TryContext context{original, settings, fixedOnCurve, curves, sweeps};
   std::size_t changed = 0;
   // Point indexes stay as they are until the end (merged points are left unused meanwhile), so
-  // that the stamps of the tries and of the changes per point hold across rounds.
+  // that the stamps of the tries and of the changes per point hold across rounds. A stamp counts
+  // the classes tried.
   std::map<Face, std::uint32_t> triedAt;
   std::vector<std::uint32_t> changedAt(mesh.points.size(), 0);
   std::uint32_t stamp = 0;
@@ -349,17 +461,12 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
     const std::uint32_t criteriaTried = round < maxRounds ? ~0u : degenerate;
     const opt::Topology t = opt::buildTopology(mesh);
     const std::vector<ElementQuality> qualities = elementQualities(mesh);
-    std::vector<std::uint8_t> locked(mesh.points.size(), 0), deleted(mesh.faces.size(), 0);
-    const std::size_t faceCount = mesh.faces.size();
-    std::size_t roundChanged = 0;
-    for (std::uint32_t f = 0; f < faceCount; ++f) {
+    std::vector<Candidate> candidates;
+    for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
       const std::uint32_t failures =
           elementFailures(qualities[f], cornerCount(mesh.faces[f]), settings);
       if ((failures & criteriaTried) == 0) continue;
-      const Neighbourhood n = neighbourhoodOf(mesh, t, f);
-      if (std::any_of(n.allPoints.begin(), n.allPoints.end(),
-                      [&](CornerIndex v) { return locked[v] != 0; }))
-        continue;
+      Neighbourhood n = neighbourhoodOf(mesh, t, f);
       // A face tried in vain before, round a neighbourhood nothing has changed since, would be
       // tried in vain again: what a try does depends only on the faces and positions there.
       const auto tried = triedAt.find(mesh.faces[f]);
@@ -367,71 +474,38 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
           std::all_of(n.allPoints.begin(), n.allPoints.end(),
                       [&](CornerIndex v) { return changedAt[v] < tried->second; }))
         continue;
-      triedAt[mesh.faces[f]] = ++stamp;
-      opt::Score before;
-      for (const std::uint32_t g : n.faces) before += opt::faceScore(mesh, mesh.faces[g], settings);
-      std::vector<Edit> edits{Edit{}};
-      const std::uint32_t shortOrSliver = (1u << unsigned(Criterion::MinLength)) |
-                                          (1u << unsigned(Criterion::TriaMinAngle)) | degenerate;
-      const std::vector<Edit> others =
-          editsAt(mesh, t, f, original, (failures & shortOrSliver) != 0);
-      edits.insert(edits.end(), others.begin(), others.end());
-      // The tries are independent: in parallel, the best chosen in edit order. First one sweep
-      // of searches in each; then the rest of the sweeps in the best few only (the first of
-      // equal ones), kContinuedTries.
-      std::vector<Trial> trials(edits.size());
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, edits.size(), 1),
+      candidates.push_back(Candidate{f, failures, std::move(n)});
+    }
+    // The classes one after another, the faces of a class in parallel and their results applied
+    // in face order: the result does not depend on the thread count. A face whose neighbourhood
+    // an earlier class changed waits for the next round (its topology is stale).
+    std::vector<std::uint8_t> locked(mesh.points.size(), 0), deleted(mesh.faces.size(), 0);
+    std::size_t roundChanged = 0;
+    for (std::vector<Candidate>& members :
+         independentClasses(std::move(candidates), mesh.points.size())) {
+      members.erase(std::remove_if(members.begin(), members.end(),
+                                   [&](const Candidate& c) {
+                                     const auto& p = c.neighbourhood.allPoints;
+                                     return std::any_of(p.begin(), p.end(), [&](CornerIndex v) {
+                                       return locked[v] != 0;
+                                     });
+                                   }),
+                    members.end());
+      ++stamp;
+      std::vector<std::optional<Trial>> results(members.size());
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, members.size(), 1),
                         [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                            trials[i] = buildTrial(mesh, t, n, edits[i]);
-                            searchTrial(trials[i], original, settings, fixedOnCurve, curves,
-                                        std::min(sweeps, 1));
-                          }
+                          for (std::size_t i = r.begin(); i < r.end(); ++i)
+                            results[i] = bestTrialAt(mesh, t, members[i], context);
                         });
-      std::vector<std::size_t> order(trials.size());
-      std::iota(order.begin(), order.end(), std::size_t(0));
-      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        const opt::Score &x = trials[a].score, &y = trials[b].score;
-        return x.failures != y.failures ? x.failures < y.failures : x.penalty < y.penalty;
-      });
-      if (order.size() > kContinuedTries) order.resize(kContinuedTries);
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size(), 1),
-                        [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                            Trial& trial = trials[order[i]];
-                            searchTrial(trial, original, settings, fixedOnCurve, curves,
-                                        sweeps - 1);
-                            trial.chord = opt::chordError(trial.mesh, trial.mesh.faces, original);
-                            trial.folds = foldedCount(trial.mesh);
-                          }
-                        });
-      // Only tries whose faces stay as close to the original as half the distance limit, or as
-      // the neighbourhood's faces were, take part.
-      std::vector<Face> present;
-      for (const std::uint32_t g : n.faces) present.push_back(mesh.faces[g]);
-      // A face with a degenerate corner, which no acceptance allows, may use the whole limit.
-      const double limitShare = (failures & degenerate) != 0 ? 1.0 : 0.5;
-      const double allowed =
-          std::max(opt::chordError(mesh, present, original),
-                   limitShare * settings.maxDistanceFactor * settings.targetSize);
-      // Nor may a try fold more faces than the neighbourhood had folded (a flipped face can pass
-      // every criterion of its own); those are counted only when a try has a fold.
-      std::optional<std::size_t> foldsBefore;
-      const auto foldsAllowed = [&](const Trial& trial) {
-        if (trial.folds == 0) return true;
-        if (!foldsBefore) foldsBefore = foldedCount(buildTrial(mesh, t, n, Edit{}).mesh);
-        return trial.folds <= *foldsBefore;
-      };
-      std::sort(order.begin(), order.end());
-      const Trial* best = nullptr;
-      for (const std::size_t i : order)
-        if (trials[i].chord <= allowed && foldsAllowed(trials[i]) &&
-            (!best || trials[i].score.betterThan(best->score)))
-          best = &trials[i];
-      if (!best || !(best->score.failures < before.failures)) continue;
-      applyTrial(mesh, n, *best, deleted);
-      for (const CornerIndex v : n.allPoints) locked[v] = 1, changedAt[v] = stamp;
-      ++roundChanged;
+      for (std::size_t i = 0; i < members.size(); ++i) {
+        const Neighbourhood& n = members[i].neighbourhood;
+        triedAt[mesh.faces[members[i].face]] = stamp;
+        if (!results[i]) continue;
+        applyTrial(mesh, n, *results[i], deleted);
+        for (const CornerIndex v : n.allPoints) locked[v] = 1, changedAt[v] = stamp;
+        ++roundChanged;
+      }
     }
     if (roundChanged == 0) break;
     changed += roundChanged;
