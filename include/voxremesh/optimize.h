@@ -134,10 +134,10 @@ std::size_t mergeTrianglePairs(QuadMesh& mesh, const QualitySettings& settings);
 /// a smaller penalty: the squares of how far each metric lies beyond a soft limit a margin inside
 /// its criterion (e.g. 55 .. 125 degrees for quad angles, 0.7 for the Jacobian ratio), and no
 /// more of the faces touching those faces are folded than before (foldedFaces, quality.h: a
-/// folded face can pass every criterion of its own). Points that
-/// share no face are independent: they are split greedily in index order into classes, each class
-/// searched in parallel and the classes one after another, so the result does not depend on the
-/// thread count. Repeats up to `sweeps` times over the points of the faces still failing, or until
+/// folded face can pass every criterion of its own). Points none of whose searches reads a point
+/// another moves (the corners of the faces touching their faces) are split greedily in index
+/// order into classes, each class searched in parallel and the classes one after another, so the
+/// result does not depend on the thread count. Repeats up to `sweeps` times over the points of the faces still failing, or until
 /// no point moves.
 /// @return the number of point moves made
 /// Throws std::invalid_argument for an empty surface, negative sweeps, settings.targetSize <= 0
@@ -225,8 +225,9 @@ std::size_t refillFoldedRegions(QuadMesh& mesh, const ReferenceSurface& original
 /// `original` no more than before or than that share (chordError). Points round a moved one wait
 /// for the next pass; passes repeat until none moves or `maxPasses` is reached. The passes run
 /// with the share 0.8 (a margin under the limit), then again with 0.2: the chords across bends
-/// that make the new mesh softer than the original. Serial searches, deterministic; faces do not
-/// change.
+/// that make the new mesh softer than the original. The faces of a pass are split greedily, in
+/// that order, into classes whose searches do not read the points others move; the searches of a
+/// class run in parallel, the classes one after another: deterministic. Faces do not change.
 /// @return the number of points moved
 /// Throws std::invalid_argument for an empty surface, negative passes, settings.targetSize <= 0
 /// or a bad mesh; SettingError for bad settings.

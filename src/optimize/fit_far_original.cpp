@@ -13,6 +13,7 @@
 
 #include "optimize/chord_error.h"
 #include "optimize/face_score.h"
+#include "optimize/independent_classes.h"
 #include "optimize/mesh_topology.h"
 #include "optimize/point_search.h"
 #include "voxremesh/optimize.h"
@@ -71,6 +72,71 @@ double excessNear(const QuadMesh& mesh, const std::vector<Face>& faces,
   return excess;
 }
 
+/// What the pulls of one pass read: the original's samples, the closest point of the mesh to each
+/// (as the pass began), the samples each face is closest to, the criteria and the distance beyond
+/// which a sample is far.
+struct PassState {
+  const ReferenceSurface& original;
+  const QualitySettings& settings;
+  const std::vector<Vec3>& samples;
+  const std::vector<SurfaceHit>& hits;
+  const std::vector<std::vector<std::uint32_t>>& nearestTo;
+  double far = 0.0;
+};
+
+/// The compass search of corner v (as improvePoint's, in the plane of its faces, on the
+/// original): a move is taken when the samples near its faces lie less beyond `far`
+/// (excessNear), none farther than before where beyond it, the faces fail no more criteria and
+/// stray no farther from the original than allowed. Returns whether v moved.
+bool pullCorner(QuadMesh& mesh, const opt::Topology& t, CornerIndex v, const PassState& pass) {
+  std::array<Vec3, 8> directions;
+  double edge = 0.0;
+  if (!opt::searchDirections(mesh, t, v, directions, edge)) return false;
+  const double far = pass.far;
+  const std::vector<Face> around = facesAround(mesh, t, v);
+  std::vector<NearSample> near;
+  for (const std::uint32_t* g = t.facesBegin(v); g != t.facesEnd(v); ++g)
+    for (const std::uint32_t s : pass.nearestTo[*g])
+      near.push_back({pass.samples[s], pass.hits[s].distance});
+  std::stable_sort(near.begin(), near.end(),
+                   [](const NearSample& a, const NearSample& b) { return a.before > b.before; });
+  const int failuresBefore = opt::scoreAround(mesh, t, v, pass.settings).failures;
+  const double chordAllowed = std::max(opt::chordError(mesh, around, pass.original), far);
+  const Vec3 start = mesh.points[v];
+  double best = 0.0;
+  for (const NearSample& sample : near)
+    if (sample.before > far) best += (sample.before - far) * (sample.before - far);
+  Vec3 position = start;
+  std::uint32_t hint = kNoCorner;
+  for (double step = 0.25 * edge; step > 0.06 * edge; step *= 0.5) {
+    bool improved = true;
+    for (int round = 0; improved && round < 3; ++round) {
+      improved = false;
+      for (const Vec3& direction : directions) {
+        const SurfaceHit hit = pass.original.closestPoint(position + direction * step, hint);
+        hint = hit.face;
+        mesh.points[v] = hit.point;
+        if (opt::scoreAround(mesh, t, v, pass.settings).failures > failuresBefore) continue;
+        const double excess = excessNear(mesh, around, near, distance(hit.point, start), far);
+        if (!(excess < best * (1.0 - 1e-9))) continue;
+        if (opt::chordError(mesh, around, pass.original) > chordAllowed) continue;
+        best = excess;
+        position = hit.point;
+        improved = true;
+        break;
+      }
+    }
+  }
+  mesh.points[v] = position;
+  return position != start;
+}
+
+/// A face nearest to a far sample, and its corners that may move, the nearest to the sample first.
+struct PullCandidate {
+  std::uint32_t face = 0;
+  std::vector<CornerIndex> corners;
+};
+
 /// Up to maxPasses passes of the pulls towards the samples of the original farther than `far`
 /// from the mesh (see fitFarOriginalPoints); returns the number of points pulled.
 std::size_t pullTowardsFarSamples(QuadMesh& mesh, const ReferenceSurface& original,
@@ -109,10 +175,12 @@ std::size_t pullTowardsFarSamples(QuadMesh& mesh, const ReferenceSurface& origin
     std::stable_sort(farSamples.begin(), farSamples.end(), [&](std::uint32_t a, std::uint32_t b) {
       return hits[a].distance > hits[b].distance;
     });
-    std::vector<std::uint8_t> locked(mesh.points.size(), 0), searched(mesh.faces.size(), 0);
-    std::size_t passPulled = 0;
+    // One search per face and pass, in the order of the farthest sample of each (it stands for
+    // the rest), unless searched in vain with nothing changed since.
+    std::vector<PullCandidate> candidates;
+    std::vector<opt::PointAccess> access;
+    std::vector<std::uint8_t> searched(mesh.faces.size(), 0);
     for (const std::uint32_t i : farSamples) {
-      // One search per face and pass: the first (farthest) sample of a face stands for the rest.
       const std::uint32_t f = hits[i].face;
       if (searched[f]) continue;
       searched[f] = 1;
@@ -122,74 +190,60 @@ std::size_t pullTowardsFarSamples(QuadMesh& mesh, const ReferenceSurface& origin
             return changedPass[c] < vainPass[f];
           }))
         continue;
-      // The face's movable corners, the nearest to the sample first.
-      std::vector<CornerIndex> corners;
-      bool anyLocked = false;
+      PullCandidate c{f, {}};
+      opt::PointAccess a;
       for (int k = 0; k < n; ++k) {
         const CornerIndex v = face[std::size_t(k)];
-        anyLocked = anyLocked || locked[v] != 0;
-        if (opt::roleOf(mesh, v) == PointRole::Free && !t.boundary[v]) corners.push_back(v);
+        if (opt::roleOf(mesh, v) != PointRole::Free || t.boundary[v]) continue;
+        c.corners.push_back(v);
+        a.writes.push_back(v);
+        for (const Face& g : facesAround(mesh, t, v))
+          a.reads.insert(a.reads.end(), g.begin(), g.begin() + cornerCount(g));
       }
-      if (anyLocked) continue;  // the hits there are stale until the next pass
-      std::stable_sort(corners.begin(), corners.end(), [&](CornerIndex a, CornerIndex b) {
-        return distance(mesh.points[a], samples[i]) < distance(mesh.points[b], samples[i]);
+      std::stable_sort(c.corners.begin(), c.corners.end(), [&](CornerIndex x, CornerIndex y) {
+        return distance(mesh.points[x], samples[i]) < distance(mesh.points[y], samples[i]);
       });
-      bool moved = false;
-      for (const CornerIndex v : corners) {
-        std::array<Vec3, 8> directions;
-        double edge = 0.0;
-        if (!opt::searchDirections(mesh, t, v, directions, edge)) continue;
-        const std::vector<Face> around = facesAround(mesh, t, v);
-        std::vector<NearSample> near;
-        for (const std::uint32_t* g = t.facesBegin(v); g != t.facesEnd(v); ++g)
-          for (const std::uint32_t s : nearestTo[*g])
-            near.push_back({samples[s], hits[s].distance});
-        std::stable_sort(near.begin(), near.end(), [](const NearSample& a, const NearSample& b) {
-          return a.before > b.before;
-        });
-        const int failuresBefore = opt::scoreAround(mesh, t, v, settings).failures;
-        const double chordAllowed = std::max(opt::chordError(mesh, around, original), far);
-        const Vec3 start = mesh.points[v];
-        // A compass search in the plane of the point's faces (as improvePoint's): a move is taken
-        // when the nearby samples lie less beyond `far` (excessNear), none farther than before
-        // where beyond it, the faces fail no more criteria and stray no farther from the original
-        // than allowed.
-        double best = 0.0;
-        for (const NearSample& sample : near)
-          if (sample.before > far) best += (sample.before - far) * (sample.before - far);
-        Vec3 position = start;
-        std::uint32_t hint = kNoCorner;
-        for (double step = 0.25 * edge; step > 0.06 * edge; step *= 0.5) {
-          bool improved = true;
-          for (int round = 0; improved && round < 3; ++round) {
-            improved = false;
-            for (const Vec3& direction : directions) {
-              const SurfaceHit hit = original.closestPoint(position + direction * step, hint);
-              hint = hit.face;
-              mesh.points[v] = hit.point;
-              if (opt::scoreAround(mesh, t, v, settings).failures > failuresBefore) continue;
-              const double excess = excessNear(mesh, around, near, distance(hit.point, start), far);
-              if (!(excess < best * (1.0 - 1e-9))) continue;
-              if (opt::chordError(mesh, around, original) > chordAllowed) continue;
-              best = excess;
-              position = hit.point;
-              improved = true;
-              break;
-            }
-          }
+      candidates.push_back(std::move(c));
+      access.push_back(std::move(a));
+    }
+    // The faces in classes that do not see each other's moves, each class in parallel. A face
+    // with a corner round a point moved in this pass waits for the next (the hits there are
+    // stale).
+    const PassState state{original, settings, samples, hits, nearestTo, far};
+    std::vector<std::uint8_t> locked(mesh.points.size(), 0);
+    std::size_t passPulled = 0;
+    for (const std::vector<std::uint32_t>& inClass :
+         opt::independentClasses(access, mesh.points.size())) {
+      std::vector<std::uint32_t> members;
+      for (const std::uint32_t c : inClass) {
+        const Face& face = mesh.faces[candidates[c].face];
+        if (std::none_of(face.begin(), face.begin() + cornerCount(face),
+                         [&](CornerIndex v) { return locked[v] != 0; }))
+          members.push_back(c);
+      }
+      std::vector<CornerIndex> movedCorner(members.size(), kNoCorner);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, members.size(), 1),
+                        [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t m = r.begin(); m < r.end(); ++m)
+                            for (const CornerIndex v : candidates[members[m]].corners)
+                              if (pullCorner(mesh, t, v, state)) {
+                                movedCorner[m] = v;
+                                break;
+                              }
+                        });
+      for (std::size_t m = 0; m < members.size(); ++m) {
+        const CornerIndex v = movedCorner[m];
+        if (v == kNoCorner) {
+          vainPass[candidates[members[m]].face] = pass;
+          continue;
         }
-        mesh.points[v] = position;
-        if (position == start) continue;
-        for (const Face& g : around)
+        for (const Face& g : facesAround(mesh, t, v))
           for (int k = 0; k < cornerCount(g); ++k) {
             locked[g[std::size_t(k)]] = 1;
             changedPass[g[std::size_t(k)]] = pass;
           }
         ++passPulled;
-        moved = true;
-        break;
       }
-      if (!moved) vainPass[f] = pass;
     }
     pulled += passPulled;
     if (passPulled == 0) break;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "optimize/independent_classes.h"
 #include "optimize/point_search.h"
 #include "voxremesh/optimize.h"
 
@@ -36,30 +37,6 @@ std::vector<CornerIndex> pointsOfFailingFaces(const QuadMesh& mesh, const opt::T
   std::sort(points.begin(), points.end());
   points.erase(std::unique(points.begin(), points.end()), points.end());
   return points;
-}
-
-/// Splits `points` (ascending) into classes of points that share no face, greedily in index
-/// order: each point goes to the first class none of whose points shares a face with it.
-std::vector<std::vector<CornerIndex>> independentClasses(const QuadMesh& mesh,
-                                                         const opt::Topology& t,
-                                                         const std::vector<CornerIndex>& points) {
-  std::vector<int> colour(mesh.points.size(), -1);
-  std::vector<std::vector<CornerIndex>> classes;
-  std::vector<std::uint8_t> taken;
-  for (const CornerIndex v : points) {
-    taken.assign(classes.size() + 1, 0);
-    for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f)
-      for (int k = 0; k < cornerCount(mesh.faces[*f]); ++k) {
-        const int c = colour[mesh.faces[*f][std::size_t(k)]];
-        if (c >= 0) taken[std::size_t(c)] = 1;
-      }
-    std::size_t c = 0;
-    while (taken[c]) ++c;
-    if (c == classes.size()) classes.emplace_back();
-    classes[c].push_back(v);
-    colour[v] = int(c);
-  }
-  return classes;
 }
 
 }  // namespace
@@ -93,13 +70,22 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
     return true;
   };
   for (int sweep = 0; sweep < sweeps; ++sweep) {
-    // Points that share no face do not see each other's moves: the points of one colour class
-    // are improved in parallel, the classes one after another, so the result does not depend
-    // on the thread count.
-    const std::vector<std::vector<CornerIndex>> classes =
-        independentClasses(mesh, topology, pointsOfFailingFaces(mesh, topology, settings));
+    // Points whose searches read (pointsNear) none of the others do not see each other's moves:
+    // the points of one class are improved in parallel, the classes one after another, so the
+    // result does not depend on the thread count.
+    const std::vector<CornerIndex> failingPoints = pointsOfFailingFaces(mesh, topology, settings);
+    std::vector<opt::PointAccess> access(failingPoints.size());
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, failingPoints.size(), 64),
+        [&](const tbb::blocked_range<std::size_t>& r) {
+          for (std::size_t i = r.begin(); i < r.end(); ++i)
+            access[i] = {opt::pointsNear(mesh, topology, failingPoints[i]), {failingPoints[i]}};
+        });
     std::size_t movedThisSweep = 0;
-    for (std::vector<CornerIndex> points : classes) {
+    for (const std::vector<std::uint32_t>& inClass :
+         opt::independentClasses(access, mesh.points.size())) {
+      std::vector<CornerIndex> points;
+      for (const std::uint32_t i : inClass) points.push_back(failingPoints[i]);
       points.erase(std::remove_if(points.begin(), points.end(), unchangedSinceSearch),
                    points.end());
       ++stamp;

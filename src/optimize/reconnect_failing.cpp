@@ -13,6 +13,7 @@
 
 #include "optimize/chord_error.h"
 #include "optimize/edge_polygon.h"
+#include "optimize/independent_classes.h"
 #include "optimize/point_search.h"
 #include "voxremesh/optimize.h"
 
@@ -411,27 +412,6 @@ std::optional<Trial> bestTrialAt(const QuadMesh& mesh, const opt::Topology& t, c
   return std::move(trials[*best]);
 }
 
-/// Splits candidates (in face order) into classes whose neighbourhoods share no point, greedily:
-/// each goes to the first class none of whose neighbourhoods it meets. The tries of one class see
-/// nothing of each other's changes.
-std::vector<std::vector<Candidate>> independentClasses(std::vector<Candidate> candidates,
-                                                       std::size_t pointCount) {
-  std::vector<std::vector<std::uint32_t>> classesAt(pointCount);
-  std::vector<std::vector<Candidate>> classes;
-  std::vector<std::uint8_t> taken;
-  for (Candidate& c : candidates) {
-    taken.assign(classes.size() + 1, 0);
-    for (const CornerIndex v : c.neighbourhood.allPoints)
-      for (const std::uint32_t k : classesAt[v]) taken[k] = 1;
-    std::uint32_t k = 0;
-    while (taken[k]) ++k;
-    if (k == classes.size()) classes.emplace_back();
-    for (const CornerIndex v : c.neighbourhood.allPoints) classesAt[v].push_back(k);
-    classes[k].push_back(std::move(c));
-  }
-  return classes;
-}
-
 }  // namespace
 
 std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& original,
@@ -461,46 +441,54 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
     const std::uint32_t criteriaTried = round < maxRounds ? ~0u : degenerate;
     const opt::Topology t = opt::buildTopology(mesh);
     const std::vector<ElementQuality> qualities = elementQualities(mesh);
-    std::vector<Candidate> candidates;
+    std::vector<Candidate> failing;
     for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
       const std::uint32_t failures =
           elementFailures(qualities[f], cornerCount(mesh.faces[f]), settings);
-      if ((failures & criteriaTried) == 0) continue;
-      Neighbourhood n = neighbourhoodOf(mesh, t, f);
-      // A face tried in vain before, round a neighbourhood nothing has changed since, would be
-      // tried in vain again: what a try does depends only on the faces and positions there.
-      const auto tried = triedAt.find(mesh.faces[f]);
-      if (tried != triedAt.end() &&
-          std::all_of(n.allPoints.begin(), n.allPoints.end(),
-                      [&](CornerIndex v) { return changedAt[v] < tried->second; }))
-        continue;
-      candidates.push_back(Candidate{f, failures, std::move(n)});
+      if ((failures & criteriaTried) != 0) failing.push_back(Candidate{f, failures, {}});
+    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, failing.size(), 16),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i < r.end(); ++i)
+                          failing[i].neighbourhood = neighbourhoodOf(mesh, t, failing[i].face);
+                      });
+    // A face tried in vain before, round a neighbourhood nothing has changed since, would be
+    // tried in vain again: what a try does depends only on the faces and positions there.
+    std::vector<Candidate> candidates;
+    for (Candidate& c : failing) {
+      const auto tried = triedAt.find(mesh.faces[c.face]);
+      const auto& points = c.neighbourhood.allPoints;
+      if (tried == triedAt.end() || std::any_of(points.begin(), points.end(), [&](CornerIndex v) {
+            return changedAt[v] >= tried->second;
+          }))
+        candidates.push_back(std::move(c));
     }
     // The classes one after another, the faces of a class in parallel and their results applied
     // in face order: the result does not depend on the thread count. A face whose neighbourhood
     // an earlier class changed waits for the next round (its topology is stale).
     std::vector<std::uint8_t> locked(mesh.points.size(), 0), deleted(mesh.faces.size(), 0);
     std::size_t roundChanged = 0;
-    for (std::vector<Candidate>& members :
-         independentClasses(std::move(candidates), mesh.points.size())) {
-      members.erase(std::remove_if(members.begin(), members.end(),
-                                   [&](const Candidate& c) {
-                                     const auto& p = c.neighbourhood.allPoints;
-                                     return std::any_of(p.begin(), p.end(), [&](CornerIndex v) {
-                                       return locked[v] != 0;
-                                     });
-                                   }),
-                    members.end());
+    std::vector<opt::PointAccess> access;
+    for (const Candidate& c : candidates)
+      access.push_back({c.neighbourhood.allPoints, c.neighbourhood.allPoints});
+    for (const std::vector<std::uint32_t>& inClass :
+         opt::independentClasses(access, mesh.points.size())) {
+      std::vector<const Candidate*> members;
+      for (const std::uint32_t i : inClass) {
+        const auto& p = candidates[i].neighbourhood.allPoints;
+        if (std::none_of(p.begin(), p.end(), [&](CornerIndex v) { return locked[v] != 0; }))
+          members.push_back(&candidates[i]);
+      }
       ++stamp;
       std::vector<std::optional<Trial>> results(members.size());
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, members.size(), 1),
                         [&](const tbb::blocked_range<std::size_t>& r) {
                           for (std::size_t i = r.begin(); i < r.end(); ++i)
-                            results[i] = bestTrialAt(mesh, t, members[i], context);
+                            results[i] = bestTrialAt(mesh, t, *members[i], context);
                         });
       for (std::size_t i = 0; i < members.size(); ++i) {
-        const Neighbourhood& n = members[i].neighbourhood;
-        triedAt[mesh.faces[members[i].face]] = stamp;
+        const Neighbourhood& n = members[i]->neighbourhood;
+        triedAt[mesh.faces[members[i]->face]] = stamp;
         if (!results[i]) continue;
         applyTrial(mesh, n, *results[i], deleted);
         for (const CornerIndex v : n.allPoints) locked[v] = 1, changedAt[v] = stamp;
