@@ -186,9 +186,13 @@ struct RemeshedPart {
   PartAcceptance acceptance;         ///< of the accepted mesh (of the last attempt when kept)
   std::size_t quads = 0, trias = 0;  ///< of the new mesh (0 when kept)
   ExtractStats extract;              ///< of the attempt that ended the part
-  double volumeSeconds = 0.0;        ///< sheets and volume (all attempts, as the times below)
-  double extractSeconds = 0.0;       ///< extraction
-  double optimizeSeconds = 0.0;      ///< quad optimisation
+  /// Wall-clock seconds of the part's stages, all attempts. Parts run side by side, each
+  /// isolated (a thread waiting inside one part's parallel loops runs none of another's work):
+  /// the times are the part's own (a sum over the parts counts parts that ran at the same time
+  /// one after the other).
+  double volumeSeconds = 0.0;    ///< sheets and volume
+  double extractSeconds = 0.0;   ///< extraction
+  double optimizeSeconds = 0.0;  ///< quad optimisation
 };
 
 /// What remeshDeck did.

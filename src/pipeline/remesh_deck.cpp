@@ -484,9 +484,14 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
             junctionSpacing[i], isFixed ? otherParts(models[i], plans[i].part) : fixed,
             hardPoints[i], &seamSpacing, &seamSampling};
         const bool halved = !fullSizeReason[i].empty();
-        RemeshedPart result = pipeline::remeshPart(
-            models[i], plans[i], halved ? halvedSettings : settings, surroundings, meshes[i],
-            [&](const char* stage) { tell(stage, plans[i].part, false); });
+        // Isolated: a thread waiting inside this part's parallel loops runs none of another
+        // part's work, so that the part's stage times are its own.
+        RemeshedPart result;
+        tbb::this_task_arena::isolate([&] {
+          result = pipeline::remeshPart(
+              models[i], plans[i], halved ? halvedSettings : settings, surroundings, meshes[i],
+              [&](const char* stage) { tell(stage, plans[i].part, false); });
+        });
         if (halved && first)
           describeHalved(result, fullSizeReason[i], halvedSize);
         else if (!first && result.status == PartStatus::Kept)
