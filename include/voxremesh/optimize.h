@@ -134,10 +134,10 @@ std::size_t mergeTrianglePairs(QuadMesh& mesh, const QualitySettings& settings);
 /// a smaller penalty: the squares of how far each metric lies beyond a soft limit a margin inside
 /// its criterion (e.g. 55 .. 125 degrees for quad angles, 0.7 for the Jacobian ratio), and no
 /// more of the faces touching those faces are folded than before (foldedFaces, quality.h: a
-/// folded face can pass every criterion of its own). Points none of whose searches reads a point
-/// another moves (the corners of the faces touching their faces) are split greedily in index
-/// order into classes, each class searched in parallel and the classes one after another, so the
-/// result does not depend on the thread count. Repeats up to `sweeps` times over the points of the faces still failing, or until
+/// folded face can pass every criterion of its own). Points that share no face are split
+/// greedily in index order into classes, each class searched in parallel and the classes one after
+/// another; the fold check reads the faces across a point's faces at their positions from before
+/// the class, so the result does not depend on the thread count. Repeats up to `sweeps` times over the points of the faces still failing, or until
 /// no point moves.
 /// @return the number of point moves made
 /// Throws std::invalid_argument for an empty surface, negative sweeps, settings.targetSize <= 0

@@ -70,17 +70,20 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
     return true;
   };
   for (int sweep = 0; sweep < sweeps; ++sweep) {
-    // Points whose searches read (pointsNear) none of the others do not see each other's moves:
-    // the points of one class are improved in parallel, the classes one after another, so the
-    // result does not depend on the thread count.
+    // Points that share no face do not see each other's moves in their faces' scores: the points
+    // of one class are improved in parallel, the classes one after another. Their fold checks
+    // also read the faces across their faces' edges, which may hold another point of the class:
+    // they read the positions from before the class (`frozen`), so the result does not depend on
+    // the thread count.
     const std::vector<CornerIndex> failingPoints = pointsOfFailingFaces(mesh, topology, settings);
     std::vector<opt::PointAccess> access(failingPoints.size());
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, failingPoints.size(), 64),
-        [&](const tbb::blocked_range<std::size_t>& r) {
-          for (std::size_t i = r.begin(); i < r.end(); ++i)
-            access[i] = {opt::pointsNear(mesh, topology, failingPoints[i]), {failingPoints[i]}};
-        });
+    for (std::size_t i = 0; i < failingPoints.size(); ++i) {
+      const CornerIndex v = failingPoints[i];
+      for (const std::uint32_t* f = topology.facesBegin(v); f != topology.facesEnd(v); ++f)
+        for (int k = 0; k < cornerCount(mesh.faces[*f]); ++k)
+          access[i].reads.push_back(mesh.faces[*f][std::size_t(k)]);
+      access[i].writes = {v};
+    }
     std::size_t movedThisSweep = 0;
     for (const std::vector<std::uint32_t>& inClass :
          opt::independentClasses(access, mesh.points.size())) {
@@ -89,11 +92,13 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
       points.erase(std::remove_if(points.begin(), points.end(), unchangedSinceSearch),
                    points.end());
       ++stamp;
+      const std::vector<Vec3> frozen = mesh.points;
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 8),
                         [&](const tbb::blocked_range<std::size_t>& r) {
                           for (std::size_t i = r.begin(); i < r.end(); ++i)
-                            movedNow[points[i]] = improvePoint(mesh, topology, original, settings,
-                                                               fixedOnCurve, curves, points[i]);
+                            movedNow[points[i]] =
+                                improvePoint(mesh, topology, original, settings, fixedOnCurve,
+                                             curves, points[i], 0.01, 8, &frozen);
                         });
       for (const CornerIndex v : points) {
         movedThisSweep += movedNow[v];

@@ -44,7 +44,8 @@ struct LocalRing {
   std::vector<CornerIndex> global;  ///< per local point, its index in the whole mesh, ascending
 };
 
-LocalRing ringAround(const QuadMesh& mesh, const Topology& t, CornerIndex v) {
+LocalRing ringAround(const QuadMesh& mesh, const std::vector<Vec3>& positions, const Topology& t,
+                     CornerIndex v) {
   const std::vector<std::uint32_t> faces = facesNear(mesh, t, v);
   LocalRing ring;
   ring.global = pointsNear(mesh, t, v);
@@ -52,7 +53,7 @@ LocalRing ringAround(const QuadMesh& mesh, const Topology& t, CornerIndex v) {
     return CornerIndex(std::lower_bound(ring.global.begin(), ring.global.end(), p) -
                        ring.global.begin());
   };
-  for (const CornerIndex p : ring.global) ring.mesh.points.push_back(mesh.points[p]);
+  for (const CornerIndex p : ring.global) ring.mesh.points.push_back(positions[p]);
   for (const std::uint32_t f : faces) {
     auto face = mesh.faces[f];
     for (int k = 0; k < cornerCount(face); ++k) face[std::size_t(k)] = local(face[std::size_t(k)]);
@@ -178,7 +179,7 @@ bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& ori
                   const QualitySettings& settings,
                   const std::vector<std::vector<Vec3>>& fixedOnCurve,
                   const std::vector<PolylineIndex>& curves, CornerIndex v, double smallestStep,
-                  int movesPerStep) {
+                  int movesPerStep, const std::vector<Vec3>* frozen) {
   const Vec3 start = mesh.points[v];
   const bool free = roleOf(mesh, v) == PointRole::Free;
   std::array<Vec3, 8> directions;
@@ -219,7 +220,7 @@ bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& ori
   std::size_t foldedBefore = 0;
   const auto foldsNoMore = [&](const Vec3& at) {
     if (!ring) {
-      ring = ringAround(mesh, t, v);
+      ring = ringAround(mesh, frozen ? *frozen : mesh.points, t, v);
       foldedBefore = foldedWithVAt(*ring, start);
     }
     return foldedWithVAt(*ring, at) <= foldedBefore;

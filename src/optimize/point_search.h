@@ -54,11 +54,16 @@ std::vector<std::vector<Vec3>> fixedPointsOnCurves(const QuadMesh& mesh);
 ///                      point never comes within a twentieth of an edge of a fixed point of its
 ///                      curve (the two would coincide past a sharp turn or the end of a line)
 /// @param curves        indexCurves of that mesh
+/// @param frozen        when given, the positions the fold check reads for the points round v's
+///                      faces (the faces across their edges), v's excepted: positions taken
+///                      before searches of other points that may move those points began, so
+///                      that the check does not depend on how far those have got
 /// Preconditions: v is not a Corner; its curve, if any, is indexed in both lists.
 bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& original,
                   const QualitySettings& settings,
                   const std::vector<std::vector<Vec3>>& fixedOnCurve,
                   const std::vector<PolylineIndex>& curves, CornerIndex v,
-                  double smallestStep = 0.01, int movesPerStep = 8);
+                  double smallestStep = 0.01, int movesPerStep = 8,
+                  const std::vector<Vec3>* frozen = nullptr);
 
 }  // namespace voxremesh::opt
