@@ -56,6 +56,23 @@ QuadMesh grid(int n) {
   return mesh;
 }
 
+/// The search engine (reconnectFailingFaces) with the given edits alone and no point searches,
+/// on the flat unit grid of the mesh's extent as the original: the recut of pairs of faces
+/// (kRecutPair, edge rotation) or the split of quads (kSplitQuad, within `maxTriangleShare`).
+std::size_t engineWithoutSearches(QuadMesh& mesh, const voxremesh::QualitySettings& settings,
+                                  unsigned edits, double maxTriangleShare = 0.0, int rounds = 5) {
+  voxremesh::ReconnectSettings engine;
+  engine.rounds = rounds;
+  engine.sweeps = 0;
+  engine.edits = edits;
+  engine.maxTriangleShare = maxTriangleShare;
+  double extent = 0.0;
+  for (const auto& p : mesh.points) extent = std::max({extent, p[0], p[1]});
+  return voxremesh::reconnectFailingFaces(
+      mesh, ReferenceSurface(voxremesh::test::unitGrid(int(std::lround(extent)))), settings,
+      engine);
+}
+
 CornerIndex addPoint(QuadMesh& mesh, std::array<double, 3> p) {
   mesh.points.push_back(p);
   if (!mesh.constraints.empty()) mesh.constraints.push_back({});
@@ -529,10 +546,11 @@ TEST(SplitLongEdges, CutsChordsAcrossACylinderAndKeepsTheMeshSound) {
   EXPECT_THROW(voxremesh::splitLongEdges(fine, 1.0, &surface, -1.0), std::invalid_argument);
 }
 
-TEST(RotateFailingEdges, RecutsAPlantedBadPairBackIntoSquares) {
-  // Two unit squares of a 4 x 4 grid cut along the wrong diagonal of the hexagon they make:
-  // two quads with a straight corner each. Rotating the shared edge restores the squares; points
-  // stay where they are; the mesh stays manifold and oriented.
+/// Two unit squares of a 4 x 4 grid cut along the wrong diagonal of the hexagon they make: two
+/// quads with a straight corner each. `recut` (returning the number of changes) must restore the
+/// squares with one change; points stay where they are; nothing changes once nothing fails.
+void expectPlantedBadPairRecut(
+    const std::function<std::size_t(QuadMesh&, voxremesh::QualitySettings&)>& recut) {
   QuadMesh mesh = grid(4);
   auto id = [](int i, int j) { return static_cast<CornerIndex>(j * 5 + i); };
   const std::vector<std::array<CornerIndex, 4>> squares = mesh.faces;
@@ -547,7 +565,7 @@ TEST(RotateFailingEdges, RecutsAPlantedBadPairBackIntoSquares) {
   settings.targetSize = 1.0;
   EXPECT_EQ(voxremesh::assessQuality(mesh, settings).failingAny, 2u);
   const auto points = mesh.points;
-  EXPECT_EQ(voxremesh::rotateFailingEdges(mesh, settings), 1u);
+  EXPECT_EQ(recut(mesh, settings), 1u);
   EXPECT_EQ(mesh.points, points);
   EXPECT_EQ(voxremesh::assessQuality(mesh, settings).failingAny, 0u);
   std::vector<std::array<CornerIndex, 4>> sortedFaces, sortedSquares;
@@ -562,10 +580,22 @@ TEST(RotateFailingEdges, RecutsAPlantedBadPairBackIntoSquares) {
   std::sort(sortedFaces.begin(), sortedFaces.end());
   std::sort(sortedSquares.begin(), sortedSquares.end());
   EXPECT_EQ(sortedFaces, sortedSquares);
-  // Nothing failing: nothing rotates.
-  EXPECT_EQ(voxremesh::rotateFailingEdges(mesh, settings), 0u);
+  EXPECT_EQ(recut(mesh, settings), 0u);
   settings.targetSize = 0.0;
-  EXPECT_THROW(voxremesh::rotateFailingEdges(mesh, settings), std::invalid_argument);
+  EXPECT_THROW(recut(mesh, settings), std::invalid_argument);
+}
+
+TEST(RotateFailingEdges, RecutsAPlantedBadPairBackIntoSquares) {
+  expectPlantedBadPairRecut([](QuadMesh& mesh, voxremesh::QualitySettings& settings) {
+    return voxremesh::rotateFailingEdges(mesh, settings);
+  });
+}
+
+TEST(EngineRecut, RecutsAPlantedBadPairBackIntoSquares) {
+  // The search engine's recut of a pair of faces, without searches.
+  expectPlantedBadPairRecut([](QuadMesh& mesh, voxremesh::QualitySettings& settings) {
+    return engineWithoutSearches(mesh, settings, voxremesh::kRecutPair);
+  });
 }
 
 TEST(SplitInvertedQuads, CutsAnArrowheadAtItsReflexCorner) {
@@ -980,11 +1010,21 @@ TEST(ImproveFailingElements, NeverFoldsMoreFacesThanItFound) {
             0u);
 }
 
-TEST(SplitFailingQuads, NeverFoldsMoreFacesThanItFound) {
+TEST(EngineSplitQuads, NeverFoldsMoreFacesThanItFound) {
   voxremesh::QualitySettings settings;
   settings.targetSize = 1.0;
-  EXPECT_GT(expectNoNewFolds(
-                [&](QuadMesh& mesh) { return voxremesh::splitFailingQuads(mesh, settings, 1.0); }),
+  EXPECT_GT(expectNoNewFolds([&](QuadMesh& mesh) {
+              return engineWithoutSearches(mesh, settings, voxremesh::kSplitQuad, 1.0);
+            }),
+            0u);
+}
+
+TEST(EngineRecut, NeverFoldsMoreFacesThanItFound) {
+  voxremesh::QualitySettings settings;
+  settings.targetSize = 1.0;
+  EXPECT_GT(expectNoNewFolds([&](QuadMesh& mesh) {
+              return engineWithoutSearches(mesh, settings, voxremesh::kRecutPair);
+            }),
             0u);
 }
 

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "support/unit_grid.h"
+#include "voxremesh/errors.h"
 #include "voxremesh/optimize.h"
 #include "voxremesh/quality.h"
 
@@ -276,9 +277,18 @@ TEST(ReconnectFailingFaces, RefusesBadArguments) {
   QuadMesh mesh = badPair();
   const ReferenceSurface plane(fixedBoundaryGrid(4));
   voxremesh::QualitySettings settings = unitCriteria();
-  EXPECT_THROW(voxremesh::reconnectFailingFaces(mesh, plane, settings, -1), std::invalid_argument);
-  EXPECT_THROW(voxremesh::reconnectFailingFaces(mesh, plane, settings, 3, -1),
+  voxremesh::ReconnectSettings engine;
+  engine.rounds = -1;
+  EXPECT_THROW(voxremesh::reconnectFailingFaces(mesh, plane, settings, engine),
                std::invalid_argument);
+  engine.rounds = 3;
+  engine.sweeps = -1;
+  EXPECT_THROW(voxremesh::reconnectFailingFaces(mesh, plane, settings, engine),
+               std::invalid_argument);
+  engine.sweeps = 3;
+  engine.maxTriangleShare = 1.5;
+  EXPECT_THROW(voxremesh::reconnectFailingFaces(mesh, plane, settings, engine),
+               voxremesh::SettingError);
   EXPECT_THROW(voxremesh::reconnectFailingFaces(mesh, ReferenceSurface(QuadMesh{}), settings),
                std::invalid_argument);
   settings.targetSize = 0.0;

@@ -137,8 +137,8 @@ std::size_t mergeTrianglePairs(QuadMesh& mesh, const QualitySettings& settings);
 /// folded face can pass every criterion of its own). Points that share no face are split
 /// greedily in index order into classes, each class searched in parallel and the classes one after
 /// another; the fold check reads the faces across a point's faces at their positions from before
-/// the class, so the result does not depend on the thread count. Repeats up to `sweeps` times over the points of the faces still failing, or until
-/// no point moves.
+/// the class, so the result does not depend on the thread count. Repeats up to `sweeps` times over
+/// the points of the faces still failing, or until no point moves.
 /// @return the number of point moves made
 /// Throws std::invalid_argument for an empty surface, negative sweeps, settings.targetSize <= 0
 /// or a bad mesh; SettingError for bad settings.
@@ -234,54 +234,62 @@ std::size_t refillFoldedRegions(QuadMesh& mesh, const ReferenceSurface& original
 std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& original,
                                  const QualitySettings& settings, int maxPasses = 3);
 
-/// Failing quads split: a quad failing criteria (quality.h, under `settings`) becomes the two
-/// triangles of the diagonal cut whose triangles fail fewer criteria in all (then the smaller
-/// penalty of face_score), when they fail fewer than the quad did (a quad folded over a bend
-/// tighter than its size: warping, Jacobian ratio). The largest gains go first, then face order,
-/// while the triangle share stays at or under `maxTriangleShare`. A diagonal that is already an
-/// edge of other faces is not cut, nor one that would leave a triangle pointing more than 120
-/// degrees from the other or from a face across one of its edges (a diagonal outside a non-convex
-/// quad folds a triangle, which passes every criterion of its own). The triangles keep the quad's
-/// orientation and its place in the face order; points do not move. Serial, deterministic.
-/// @return the number of quads split
-/// Throws SettingError for a share outside 0..1 or bad settings; std::invalid_argument for
-/// settings.targetSize <= 0 or a bad mesh.
-std::size_t splitFailingQuads(QuadMesh& mesh, const QualitySettings& settings,
-                              double maxTriangleShare);
+/// The kinds of local edits reconnectFailingFaces tries at a failing face (bits).
+enum ReconnectEdit : unsigned {
+  kRecutPair = 1u,        ///< the other cuts of the polygon a face makes with a neighbour
+  kThreeQuadCorner = 2u,  ///< an inner corner of three quads taken out, their hexagon cut again
+  kCollapse = 4u,         ///< a quad's diagonals collapsed; a short or sliver face's edges
+  kSplitQuad = 8u,        ///< a quad cut into two triangles while the triangle share allows
+};
 
-/// Reconnection of failing faces: for each face failing a criterion (quality.h, under
-/// `settings`), in index order, its neighbourhood (the faces round the points of the faces round
-/// its corners) is tried as it is and after each change of connectivity at the face: every other
-/// cut of the polygon it makes with a neighbour across one of its edges (as rotateFailingEdges,
-/// under the same rules), the removal of an inner corner that exactly three quads share (their
-/// hexagon cut into two quads along each of its diagonals: the corner an uneven count of rows
-/// leaves, which can split a right-angled corner of the outline in two), for a quad the collapse
-/// of either diagonal and, for a face failing the
-/// minimum length or the triangles' minimum angle or with a degenerate corner, the collapse of
-/// each of its edges (a quad along the
-/// edge becomes a triangle, a triangle along it goes), both under the constraint and manifold
-/// rules of the rhombic collapse. Each try is followed by one round of the pattern
-/// search of improveFailingElements (down to steps of a sixteenth of an edge) over the points of
-/// the faces round the face's corners; the three tries that then score best go on to up to
-/// `sweeps` rounds in all, the others are dropped. Only tries whose faces stay as close to the
-/// original as half the distance limit (settings.maxDistanceFactor x targetSize; the whole
-/// limit round a face with a degenerate corner, which no acceptance allows), or as the
-/// neighbourhood's faces were, take part (measured at face centres and edge midpoints), and only
-/// those with no more folded faces (foldedFaces, quality.h) than the neighbourhood had: a flipped
-/// face can pass every criterion of its own. The one whose neighbourhood then scores best is kept
-/// when it fails fewer criteria than the neighbourhood did. Neighbourhoods changed in a round do
-/// not overlap; rounds repeat until none changes or `maxRounds` is reached, then as many again
-/// over the faces with a degenerate corner only. The faces of a round are split greedily, in
-/// index order, into classes whose neighbourhoods share no point; the faces of a class are tried
-/// in parallel (and the tries of one face too) and their changes applied in face order, the
-/// classes one after another, a face whose neighbourhood an earlier class changed waiting for the
-/// next round: the result does not depend on the thread count.
+/// What reconnectFailingFaces does.
+struct ReconnectSettings {
+  /// Rounds over every failing face, then as many over the faces with a degenerate corner (>= 0).
+  int rounds = 3;
+  /// Sweeps of pattern searches of each try (>= 0; 0: tries are scored as cut, and the
+  /// neighbourhood as it is is not a try).
+  int sweeps = 3;
+  unsigned edits = kRecutPair | kThreeQuadCorner | kCollapse;  ///< ReconnectEdit bits
+  /// kSplitQuad is applied while the triangle share stays at or under this (0 .. 1).
+  double maxTriangleShare = 0.0;
+};
+
+/// The search engine of the optimisation: local edits round each failing face, each followed by
+/// pattern searches of the points round it, kept by one rule. Per round, for each face failing a
+/// criterion (quality.h, under `settings`), its neighbourhood (the faces round the points of the
+/// faces round its corners) is tried as it is (when reconnect.sweeps > 0) and after each edit of
+/// the kinds reconnect.edits names (ReconnectEdit): every other cut of the polygon the face makes
+/// with a neighbour across one of its edges (an edge between two constrained points is not
+/// removed, a diagonal between two constrained points or along an existing edge not made,
+/// neither end of the removed edge left in fewer than 3 faces, 2 on the boundary); the removal of
+/// an inner corner that exactly three quads share (their hexagon cut into two quads along each of
+/// its diagonals: the corner an uneven count of rows leaves); for a quad the collapse of either
+/// diagonal and, for a face failing the minimum length or the triangles' minimum angle or with a
+/// degenerate corner, the collapse of each of its edges (under the constraint and manifold rules
+/// of the rhombic collapse); a quad's cut into two triangles along either diagonal, while the
+/// triangle share stays at or under reconnect.maxTriangleShare. Each try gets one sweep of the
+/// pattern search of improveFailingElements (down to steps of a sixteenth of an edge) over the
+/// points of the faces round the face's corners; the three that then score best go on to
+/// reconnect.sweeps sweeps in all. The rule: only tries whose faces stay as close to the original
+/// as half the distance limit (settings.maxDistanceFactor x targetSize; the whole limit round a
+/// face with a degenerate corner, which no acceptance allows), or as the neighbourhood's faces
+/// were, take part (measured at face centres and edge midpoints), and only those with no more
+/// folded faces (foldedFaces, quality.h) than the neighbourhood had: a flipped face can pass every
+/// criterion of its own. The one whose neighbourhood then scores best (face_score.h: fewer
+/// criteria failed, then the smaller penalty) is kept when it fails fewer criteria than the
+/// neighbourhood did. Rounds repeat until none changes or reconnect.rounds is reached, then as
+/// many again over the faces with a degenerate corner only. The faces of a round are split
+/// greedily, in index order, into classes whose neighbourhoods share no point; the faces of a
+/// class are tried in parallel (and the tries of one face too) and their changes applied in face
+/// order, the classes one after another, a face whose neighbourhood an earlier class changed
+/// waiting for the next round: the result does not depend on the thread count.
 /// @return the number of neighbourhoods changed
 /// Throws std::invalid_argument for an empty surface, negative rounds or sweeps,
-/// settings.targetSize <= 0 or a bad mesh; SettingError for bad settings.
+/// settings.targetSize <= 0 or a bad mesh; SettingError for bad settings or a triangle share
+/// outside 0 .. 1.
 std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& original,
-                                  const QualitySettings& settings, int maxRounds = 3,
-                                  int sweeps = 3);
+                                  const QualitySettings& settings,
+                                  const ReconnectSettings& reconnect = {});
 
 /// Settings of optimizeQuadMesh.
 struct OptimizeSettings {
@@ -304,12 +312,14 @@ struct OptimizeSettings {
   /// Sweeps of each improveFailingElements pass (before and after warping removal; 0: none): a
   /// point moved in one sweep opens moves for its neighbours in the next.
   int improveSweeps = 3;
-  /// Rounds of reconnectFailingFaces after the last improveFailingElements pass (0: none).
+  /// Rounds of the search engine (reconnectFailingFaces, every edit but the quad split) after the
+  /// last improveFailingElements pass (0: none).
   int reconnectRounds = 8;
   /// Passes of fitFarOriginalPoints after the reconnection (0: none).
   int fitPasses = 3;
   /// Quads still failing are split into two triangles where these fail fewer criteria, while the
-  /// triangle share stays at or under this (splitFailingQuads; 0: none).
+  /// triangle share stays at or under this (the search engine with kSplitQuad alone, no searches,
+  /// at the end; 0: none).
   double splitFailingShare = 0.03;
   /// A face is of zero area below zeroAreaFactor x targetSize^2.
   double zeroAreaFactor = 1e-4;
@@ -342,7 +352,7 @@ struct OptimizeStats {
   double warpingSeconds = 0.0;
   double reconnectSeconds = 0.0;
   double fitSeconds = 0.0;        ///< fitFarOriginalPoints
-  double quadSplitSeconds = 0.0;  ///< splitFailingQuads and splitInvertedQuads
+  double quadSplitSeconds = 0.0;  ///< the engine's quad split and splitInvertedQuads
   double totalSeconds = 0.0;
   std::size_t edgesSplit = 0;
   CleanupResult cleanup;  ///< summed over both clean-up passes
@@ -352,7 +362,7 @@ struct OptimizeStats {
   std::size_t edgesRotated = 0;
   std::size_t reconnected = 0;    ///< neighbourhoods changed by reconnectFailingFaces
   std::size_t farPulls = 0;       ///< points pulled towards far original places
-  std::size_t failingSplit = 0;   ///< failing quads split into two triangles (splitFailingQuads)
+  std::size_t failingSplit = 0;   ///< failing quads split into two triangles (the last phase)
   std::size_t invertedSplit = 0;  ///< quads with a reflex corner split into two triangles (last)
   std::size_t foldsRefilled = 0;  ///< fold regions untangled or refilled (both passes)
   WarpingResult warping;
@@ -361,12 +371,12 @@ struct OptimizeStats {
 /// Runs the steps: edge splitting, clean-up, rhombic collapse, clean-up, relaxation, triangle
 /// merging, relaxation, improvement of the failing elements, edge rotation (and the improvement
 /// again where any rotated), warping removal, the regions round folded faces refilled
-/// (refillFoldedRegions), the improvement once more (it takes only moves that
-/// leave fewer criteria failing around a point, warping included), the reconnection of the faces
-/// still failing (reconnectFailingFaces), points pulled towards the far places of the original
-/// (fitFarOriginalPoints), the split of quads still failing into triangle pairs that fail less
-/// (splitFailingQuads), the split of quads still inverted (splitInvertedQuads), and last the
-/// regions round faces these passes left folded refilled again.
+/// (refillFoldedRegions), the improvement once more (it takes only moves that leave fewer criteria
+/// failing around a point, warping included), the search engine with every edit but the quad split,
+/// points pulled towards the far places of the original (fitFarOriginalPoints), the search engine
+/// splitting quads still failing into triangle pairs that fail less (within splitFailingShare), the
+/// split of quads still inverted (splitInvertedQuads), and last the regions round faces these
+/// passes left folded refilled again.
 /// @param mesh      the extracted mesh (preconditions at the top of the file)
 /// @param original  the original surface (built from the input shells), not empty
 /// @param settings  see OptimizeSettings

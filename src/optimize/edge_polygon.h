@@ -1,5 +1,5 @@
 // The polygon two faces make around the edge they share, and its cuts along other diagonals: what
-// edge rotation (rotateFailingEdges, reconnectFailingFaces) chooses between, and whether a cut
+// the search engine's recuts (reconnectFailingFaces) choose between, and whether a cut
 // folds a face.
 #pragma once
 

@@ -110,17 +110,26 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
     s.improvedMoves += improveFailingElements(mesh, original, quality, settings.improveSweeps);
     s.improveSeconds += secondsSince(t);
   };
-  // Edge rotation after each improvement pass, and the improvement again where it rotated any.
-  auto rotateAndImprove = [&] {
-    if (!settings.rotateEdges || quality.targetSize <= 0.0) return;
-    const Clock::time_point t = Clock::now();
-    const std::size_t rotated = rotateFailingEdges(mesh, quality);
-    s.edgesRotated += rotated;
-    s.rotateSeconds += secondsSince(t);
-    if (rotated > 0 && improve) improveFailing();
+  // The search engine (reconnectFailingFaces) in two phases: every edit but the quad split, with
+  // searches, after the warping removal; last the quads two triangles do better than split,
+  // within the triangle share, until none is (a split locks its neighbourhood for the round).
+  const auto engine = [&](int rounds, int sweeps, unsigned edits) {
+    ReconnectSettings reconnect;
+    reconnect.rounds = rounds;
+    reconnect.sweeps = sweeps;
+    reconnect.edits = edits;
+    reconnect.maxTriangleShare = settings.splitFailingShare;
+    return reconnectFailingFaces(mesh, original, quality, reconnect);
   };
   if (improve) improveFailing();
-  rotateAndImprove();
+  // Edge rotation after the first improvement pass, and the improvement again where it rotated
+  // any.
+  if (settings.rotateEdges && quality.targetSize > 0.0) {
+    const Clock::time_point t = Clock::now();
+    s.edgesRotated = rotateFailingEdges(mesh, quality);
+    s.rotateSeconds = secondsSince(t);
+    if (s.edgesRotated > 0 && improve) improveFailing();
+  }
   const Clock::time_point t = Clock::now();
   s.warping = removeWarping(mesh, settings.warpingDeg, settings.warpingIterations,
                             settings.warpingMoveFactor * quality.targetSize);
@@ -130,7 +139,7 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
   if (improve) improveFailing();
   if (settings.reconnectRounds > 0 && quality.targetSize > 0.0) {
     const Clock::time_point r = Clock::now();
-    s.reconnected = reconnectFailingFaces(mesh, original, quality, settings.reconnectRounds);
+    s.reconnected = engine(settings.reconnectRounds, 3, ReconnectSettings{}.edits);
     s.reconnectSeconds = secondsSince(r);
   }
   if (settings.fitPasses > 0 && quality.targetSize > 0.0) {
@@ -140,7 +149,7 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
   }
   const Clock::time_point q = Clock::now();
   if (settings.splitFailingShare > 0.0 && quality.targetSize > 0.0)
-    s.failingSplit = splitFailingQuads(mesh, quality, settings.splitFailingShare);
+    s.failingSplit = engine(20, 0, kSplitQuad);
   s.invertedSplit = splitInvertedQuads(mesh, quality.degenerateCornerDeg);
   s.quadSplitSeconds = secondsSince(q);
   // The last passes move points and split quads: a fold they leave (a sliver along a boundary edge

@@ -9,12 +9,14 @@
 #include <numeric>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "optimize/chord_error.h"
 #include "optimize/edge_polygon.h"
 #include "optimize/independent_classes.h"
 #include "optimize/point_search.h"
+#include "voxremesh/errors.h"
 #include "voxremesh/optimize.h"
 
 namespace voxremesh {
@@ -50,6 +52,7 @@ struct Edit {
   std::vector<std::uint32_t> removed;  ///< faces taken out
   std::vector<Face> added;             ///< faces put in (before the merge)
   std::optional<opt::Merge> merge;     ///< two points made one
+  bool split = false;                  ///< a quad cut into two triangles (the share is limited)
 };
 
 /// A neighbourhood after an edit: its own small mesh, and the state of the pattern searches of its
@@ -67,6 +70,7 @@ struct Trial {
   opt::Score score;
   double chord = 0.0;     ///< chordError of its faces
   std::size_t folds = 0;  ///< faces of `mesh` folded against their neighbours (foldedFaces)
+  bool split = false;     ///< Edit::split of the edit it follows
 };
 template <class T>
 void sortUnique(std::vector<T>& v) {
@@ -153,6 +157,7 @@ Trial buildTrial(const QuadMesh& mesh, const opt::Topology& t, const Neighbourho
   for (const CornerIndex v : n.searched)
     if ((!edit.merge || v != edit.merge->remove) && opt::searchable(mesh, t, v))
       trial.searched.push_back(local(v));
+  trial.split = edit.split;
   trial.movedAt.assign(trial.global.size(), 0);
   trial.stayedAt.assign(trial.global.size(), 0);
   return trial;
@@ -222,22 +227,27 @@ std::vector<CornerIndex> hexagonAround(const QuadMesh& mesh, const opt::Topology
   return hexagon;
 }
 
-/// The edits tried at face f: every other cut of the polygon it makes with a neighbour across
-/// each of its edges (as rotateFailingEdges), the collapse of each diagonal of a quad and, when
-/// `collapseEdges`, of each of its edges.
-std::vector<Edit> editsAt(const QuadMesh& mesh, const opt::Topology& t, std::uint32_t f,
-                          const ReferenceSurface& original, bool collapseEdges) {
-  std::vector<Edit> edits;
+/// Whether v may move or lose faces as the edits see it: Free.
+bool isFree(const QuadMesh& mesh, CornerIndex v) {
+  return opt::roleOf(mesh, v) == PointRole::Free;
+}
+
+/// Whether v may lose a face and keep 3 (2 on the boundary): no doublet, no spike.
+bool keepsFaces(const opt::Topology& t, CornerIndex v) {
+  return t.faceCount(v) >= (t.boundary[v] ? 3u : 4u);
+}
+
+/// Every other cut of the polygon face f makes with its neighbour across each of its edges: an
+/// edge between two constrained points (it may run along a curve) stays, a diagonal between two
+/// constrained points or along an existing edge is not made.
+void addRecuts(const QuadMesh& mesh, const opt::Topology& t, std::uint32_t f,
+               std::vector<Edit>& edits) {
   const Face& face = mesh.faces[f];
   const int n = cornerCount(face);
-  auto isFree = [&](CornerIndex v) { return opt::roleOf(mesh, v) == PointRole::Free; };
-  auto keepsFaces = [&](CornerIndex v) {  // v may lose a face
-    return t.faceCount(v) >= (t.boundary[v] ? 3u : 4u);
-  };
   for (int k = 0; k < n; ++k) {
     const CornerIndex a = face[std::size_t(k)], b = face[std::size_t((k + 1) % n)];
-    if ((!isFree(a) && !isFree(b)) || t.edgeFaces(a, b) != 2) continue;
-    if (!keepsFaces(a) || !keepsFaces(b)) continue;
+    if ((!isFree(mesh, a) && !isFree(mesh, b)) || t.edgeFaces(a, b) != 2) continue;
+    if (!keepsFaces(t, a) || !keepsFaces(t, b)) continue;
     std::uint32_t g = f;
     for (const std::uint32_t* h = t.facesBegin(a); h != t.facesEnd(a); ++h) {
       const Face& other = mesh.faces[*h];
@@ -250,50 +260,89 @@ std::vector<Edit> editsAt(const QuadMesh& mesh, const opt::Topology& t, std::uin
     for (std::size_t i = 0; i < polygon.size(); ++i) {
       if (polygon.size() != 5 && i >= polygon.size() / 2) continue;
       const CornerIndex p = polygon[i], q = polygon[opt::diagonalEnd(polygon.size(), i)];
-      if (t.edgeFaces(p, q) > 0 || (!isFree(p) && !isFree(q))) continue;
+      if (t.edgeFaces(p, q) > 0 || (!isFree(mesh, p) && !isFree(mesh, q))) continue;
       const std::array<Face, 2> cut = opt::cutPolygon(polygon, i);
-      edits.push_back(Edit{{std::min(f, g), std::max(f, g)}, {cut[0], cut[1]}, std::nullopt});
+      edits.push_back(
+          Edit{{std::min(f, g), std::max(f, g)}, {cut[0], cut[1]}, std::nullopt, false});
     }
   }
-  // An inner corner of three quads taken out, their hexagon cut into two quads along each of its
-  // diagonals: the three-quad corner an uneven count of rows leaves, moved away from the face.
-  for (int k = 0; k < n; ++k) {
+}
+
+/// An inner corner of face f that three quads share taken out, their hexagon cut into two quads
+/// along each of its diagonals: the three-quad corner an uneven count of rows leaves, moved away.
+void addThreeQuadCornerRemovals(const QuadMesh& mesh, const opt::Topology& t, std::uint32_t f,
+                                std::vector<Edit>& edits) {
+  const Face& face = mesh.faces[f];
+  for (int k = 0; k < cornerCount(face); ++k) {
     const CornerIndex v = face[std::size_t(k)];
-    if (!isFree(v)) continue;
+    if (!isFree(mesh, v)) continue;
     const std::vector<CornerIndex> hexagon = hexagonAround(mesh, t, v);
     if (hexagon.empty()) continue;
     std::vector<std::uint32_t> removed(t.facesBegin(v), t.facesEnd(v));
     for (std::size_t i = 0; i < 3; ++i) {
       if (t.edgeFaces(hexagon[i], hexagon[i + 3]) > 0) continue;
       const std::array<Face, 2> cut = opt::cutPolygon(hexagon, i);
-      edits.push_back(Edit{removed, {cut[0], cut[1]}, std::nullopt});
+      edits.push_back(Edit{removed, {cut[0], cut[1]}, std::nullopt, false});
     }
   }
-  // A face with a short side, a degenerate corner or (a triangle) a sharp one: each of its edges
-  // collapsed (both ends made one point), which turns it and its neighbour across the edge into
-  // triangles.
-  if (collapseEdges)
-    for (int k = 0; k < n; ++k) {
-      const CornerIndex u = face[std::size_t(k)], v = face[std::size_t((k + 1) % n)];
-      if (!opt::mergeKeepsManifold(mesh, t, u, v)) continue;
-      std::optional<opt::Merge> merge = opt::mergeUnderConstraints(mesh, u, v);
-      if (!merge) continue;
-      if (opt::roleOf(mesh, merge->keep) == PointRole::Free)
-        merge->position = original.closestPoint(merge->position).point;
-      edits.push_back(Edit{{}, {}, merge});
-    }
-  if (n == 4)
-    for (int k = 0; k < 2; ++k) {
-      const CornerIndex u = face[std::size_t(k)], v = face[std::size_t(k + 2)];
-      if (!keepsFaces(face[std::size_t(k + 1)]) || !keepsFaces(face[std::size_t((k + 3) % 4)]))
-        continue;
-      if (!opt::mergeKeepsManifold(mesh, t, u, v)) continue;
-      std::optional<opt::Merge> merge = opt::mergeUnderConstraints(mesh, u, v);
-      if (!merge) continue;
-      if (opt::roleOf(mesh, merge->keep) == PointRole::Free)
-        merge->position = original.closestPoint(merge->position).point;
-      edits.push_back(Edit{{f}, {}, merge});
-    }
+}
+
+/// The merge of u and v under the constraint and manifold rules, a Free point that stays laid on
+/// the original; nothing where the rules forbid it.
+std::optional<opt::Merge> collapse(const QuadMesh& mesh, const opt::Topology& t, CornerIndex u,
+                                   CornerIndex v, const ReferenceSurface& original) {
+  if (!opt::mergeKeepsManifold(mesh, t, u, v)) return std::nullopt;
+  std::optional<opt::Merge> merge = opt::mergeUnderConstraints(mesh, u, v);
+  if (merge && isFree(mesh, merge->keep))
+    merge->position = original.closestPoint(merge->position).point;
+  return merge;
+}
+
+/// The collapses at face f: of each diagonal of a quad and, when `edgesToo` (a face with a
+/// short side, a degenerate corner or, a triangle, a sharp one), of each of its edges, which
+/// turns it and its neighbour across the edge into triangles.
+void addCollapses(const QuadMesh& mesh, const opt::Topology& t, std::uint32_t f,
+                  const ReferenceSurface& original, bool edgesToo, std::vector<Edit>& edits) {
+  const Face& face = mesh.faces[f];
+  const int n = cornerCount(face);
+  for (int k = 0; edgesToo && k < n; ++k)
+    if (const auto merge =
+            collapse(mesh, t, face[std::size_t(k)], face[std::size_t((k + 1) % n)], original))
+      edits.push_back(Edit{{}, {}, merge, false});
+  for (std::size_t k = 0; n == 4 && k < 2; ++k) {
+    if (!keepsFaces(t, face[k + 1]) || !keepsFaces(t, face[(k + 3) % 4])) continue;
+    if (const auto merge = collapse(mesh, t, face[k], face[k + 2], original))
+      edits.push_back(Edit{{f}, {}, merge, false});
+  }
+}
+
+/// A quad cut into two triangles along a diagonal that is not already an edge of other faces
+/// (a quad folded over a bend tighter than its size: warping, Jacobian ratio).
+void addQuadSplits(const QuadMesh& mesh, const opt::Topology& t, std::uint32_t f,
+                   std::vector<Edit>& edits) {
+  const Face& face = mesh.faces[f];
+  if (cornerCount(face) != 4) return;
+  for (std::size_t k = 0; k < 2; ++k) {
+    if (t.edgeFaces(face[k], face[k + 2]) > 0) continue;
+    const auto at = [&](std::size_t i) { return face[(k + i) % 4]; };
+    edits.push_back(
+        Edit{{f},
+             {Face{at(0), at(1), at(2), kNoCorner}, Face{at(2), at(3), at(0), kNoCorner}},
+             std::nullopt,
+             true});
+  }
+}
+
+/// The edits of the kinds `kinds` (ReconnectEdit bits) tried at face f; the edges of a face are
+/// collapsed only when `collapseEdges`, quads split only when `splitQuads`.
+std::vector<Edit> editsAt(const QuadMesh& mesh, const opt::Topology& t, std::uint32_t f,
+                          const ReferenceSurface& original, unsigned kinds, bool collapseEdges,
+                          bool splitQuads) {
+  std::vector<Edit> edits;
+  if (kinds & kRecutPair) addRecuts(mesh, t, f, edits);
+  if (kinds & kThreeQuadCorner) addThreeQuadCornerRemovals(mesh, t, f, edits);
+  if (kinds & kCollapse) addCollapses(mesh, t, f, original, collapseEdges, edits);
+  if ((kinds & kSplitQuad) && splitQuads) addQuadSplits(mesh, t, f, edits);
   return edits;
 }
 
@@ -323,13 +372,20 @@ void applyTrial(QuadMesh& mesh, const Neighbourhood& n, const Trial& trial,
   }
 }
 
-/// What the tries at a face need besides the mesh: the original, the criteria, the curves and the
-/// number of sweeps of pattern searches per try.
+/// The number of triangles among `faces`.
+std::size_t triangleCount(const std::vector<Face>& faces) {
+  return std::size_t(std::count_if(faces.begin(), faces.end(),
+                                   [](const Face& face) { return cornerCount(face) == 3; }));
+}
+
+/// What the tries at a face need besides the mesh: the original, the criteria, the curves, the
+/// kinds of edits (ReconnectEdit bits) and the number of sweeps of pattern searches per try.
 struct TryContext {
   const ReferenceSurface& original;
   const QualitySettings& settings;
   const std::vector<std::vector<Vec3>>& fixedOnCurve;
   const std::vector<PolylineIndex>& curves;
+  unsigned kinds = 0;
   int sweeps = 0;
 };
 
@@ -344,7 +400,7 @@ struct Candidate {
 /// edit, each searched; the best of those within the distance allowed and with no more folds,
 /// when it fails fewer criteria than the neighbourhood did. Reads the mesh only.
 std::optional<Trial> bestTrialAt(const QuadMesh& mesh, const opt::Topology& t, const Candidate& c,
-                                 const TryContext& context) {
+                                 const TryContext& context, bool splitQuads) {
   const QualitySettings& settings = context.settings;
   const Neighbourhood& n = c.neighbourhood;
   const std::uint32_t degenerate = 1u << unsigned(Criterion::DegenerateCorner);
@@ -352,9 +408,11 @@ std::optional<Trial> bestTrialAt(const QuadMesh& mesh, const opt::Topology& t, c
                                       (1u << unsigned(Criterion::TriaMinAngle)) | degenerate;
   opt::Score before;
   for (const std::uint32_t g : n.faces) before += opt::faceScore(mesh, mesh.faces[g], settings);
-  std::vector<Edit> edits{Edit{}};
-  const std::vector<Edit> others =
-      editsAt(mesh, t, c.face, context.original, (c.failures & shortOrSliver) != 0);
+  // The neighbourhood as it is, searched (nothing to try when there are no searches).
+  std::vector<Edit> edits;
+  if (context.sweeps > 0) edits.push_back(Edit{});
+  const std::vector<Edit> others = editsAt(mesh, t, c.face, context.original, context.kinds,
+                                           (c.failures & shortOrSliver) != 0, splitQuads);
   edits.insert(edits.end(), others.begin(), others.end());
   // The tries are independent: in parallel, the best chosen in edit order. First one sweep of
   // searches in each; then the rest of the sweeps in the best few only (the first of equal
@@ -415,10 +473,13 @@ std::optional<Trial> bestTrialAt(const QuadMesh& mesh, const opt::Topology& t, c
 }  // namespace
 
 std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& original,
-                                  const QualitySettings& settings, int maxRounds, int sweeps) {
+                                  const QualitySettings& settings,
+                                  const ReconnectSettings& reconnect) {
   if (original.empty())
     throw std::invalid_argument("reconnectFailingFaces: the original surface is empty");
-  if (maxRounds < 0 || sweeps < 0)
+  const int maxRounds = reconnect.rounds;
+  const double maxTriangleShare = reconnect.maxTriangleShare;
+  if (maxRounds < 0 || reconnect.sweeps < 0)
     throw std::invalid_argument("reconnectFailingFaces: negative round or sweep count");
   if (!(settings.targetSize > 0.0))
     throw std::invalid_argument("reconnectFailingFaces: targetSize must be > 0");
@@ -426,7 +487,11 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
   opt::checkMesh(mesh);
   const std::vector<std::vector<Vec3>> fixedOnCurve = opt::fixedPointsOnCurves(mesh);
   const std::vector<PolylineIndex> curves = opt::indexCurves(mesh);
-  const TryContext context{original, settings, fixedOnCurve, curves, sweeps};
+  if (!(maxTriangleShare >= 0.0 && maxTriangleShare <= 1.0))
+    throw SettingError("reconnectFailingFaces: triangle share " + std::to_string(maxTriangleShare) +
+                       " is outside 0 .. 1");
+  const TryContext context{original, settings,        fixedOnCurve,
+                           curves,   reconnect.edits, reconnect.sweeps};
   std::size_t changed = 0;
   // Point indexes stay as they are until the end (merged points are left unused meanwhile), so
   // that the stamps of the tries and of the changes per point hold across rounds. A stamp counts
@@ -468,6 +533,14 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
     // an earlier class changed waits for the next round (its topology is stale).
     std::vector<std::uint8_t> locked(mesh.points.size(), 0), deleted(mesh.faces.size(), 0);
     std::size_t roundChanged = 0;
+    // The faces and triangles the mesh has as the trials are applied: a split is applied while
+    // the triangle share stays at or under maxTriangleShare.
+    std::size_t faces = mesh.faces.size(), triangles = triangleCount(mesh.faces);
+    const auto splitFits = [&](std::size_t moreFaces, std::size_t moreTriangles) {
+      return double(triangles + moreTriangles) <=
+             maxTriangleShare * double(faces + moreFaces) + 1e-9;
+    };
+    const bool splitQuads = maxTriangleShare > 0.0 && splitFits(1, 2);
     std::vector<opt::PointAccess> access;
     for (const Candidate& c : candidates)
       access.push_back({c.neighbourhood.allPoints, c.neighbourhood.allPoints});
@@ -484,12 +557,22 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, members.size(), 1),
                         [&](const tbb::blocked_range<std::size_t>& r) {
                           for (std::size_t i = r.begin(); i < r.end(); ++i)
-                            results[i] = bestTrialAt(mesh, t, *members[i], context);
+                            results[i] = bestTrialAt(mesh, t, *members[i], context, splitQuads);
                         });
       for (std::size_t i = 0; i < members.size(); ++i) {
         const Neighbourhood& n = members[i]->neighbourhood;
         triedAt[mesh.faces[members[i]->face]] = stamp;
         if (!results[i]) continue;
+        const std::size_t trialTriangles = triangleCount(results[i]->mesh.faces);
+        std::size_t nTriangles = 0;
+        for (const std::uint32_t g : n.faces) nTriangles += cornerCount(mesh.faces[g]) == 3;
+        if (results[i]->split &&
+            !splitFits(results[i]->mesh.faces.size() - n.faces.size(), trialTriangles - nTriangles))
+          continue;
+        faces += results[i]->mesh.faces.size();
+        faces -= n.faces.size();
+        triangles += trialTriangles;
+        triangles -= nTriangles;
         applyTrial(mesh, n, *results[i], deleted);
         for (const CornerIndex v : n.allPoints) locked[v] = 1, changedAt[v] = stamp;
         ++roundChanged;

@@ -60,12 +60,12 @@ double boundaryMeshSize(const QuadMesh& mesh, double spacing) {
 /// NarrowSheetSettings::followShortPieces); the hard points inside the sheet are snapped to nodes
 /// inside the mesh (a grid's); then, when `optimize` and settings.optimize, optimised at the
 /// spacing as a volume's mesh is, its minimum length judged as the part's acceptance judges it
-/// (at boundaryMeshSize); where the split of failing quads is on (splitFailingQuads), it splits
-/// every quad whose triangles fail fewer criteria, whatever the triangle share: the rows chose
-/// their faces for fewer failing elements first and fewer triangles only then (polygon_quads.h),
-/// and their optimisation keeps that order.
-/// Throws extract::NarrowSheetRefusal when the sheet cannot be meshed so, or a hard point finds
-/// no node inside the mesh within `spacing`.
+/// (at boundaryMeshSize); where the split of failing quads is on (the search engine's kSplitQuad
+/// phase), it splits every quad whose triangles fail fewer criteria, whatever the triangle share:
+/// the rows chose their faces for fewer failing elements first and fewer triangles only then
+/// (polygon_quads.h), and their optimisation keeps that order. Throws extract::NarrowSheetRefusal
+/// when the sheet cannot be meshed so, or a hard point finds no node inside the mesh within
+/// `spacing`.
 QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
                           const ReferenceSurface& original, double spacing, double targetSize,
                           double junctionSpacing, const std::vector<Point3>& hardPoints,
