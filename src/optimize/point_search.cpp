@@ -46,9 +46,20 @@ struct LocalRing {
 
 LocalRing ringAround(const QuadMesh& mesh, const std::vector<Vec3>& positions, const Topology& t,
                      CornerIndex v) {
-  const std::vector<std::uint32_t> faces = facesNear(mesh, t, v);
+  std::vector<std::uint32_t> faces;
+  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f)
+    for (int k = 0; k < cornerCount(mesh.faces[*f]); ++k) {
+      const CornerIndex p = mesh.faces[*f][std::size_t(k)];
+      faces.insert(faces.end(), t.facesBegin(p), t.facesEnd(p));
+    }
+  std::sort(faces.begin(), faces.end());
+  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
   LocalRing ring;
-  ring.global = pointsNear(mesh, t, v);
+  for (const std::uint32_t f : faces)
+    for (int k = 0; k < cornerCount(mesh.faces[f]); ++k)
+      ring.global.push_back(mesh.faces[f][std::size_t(k)]);
+  std::sort(ring.global.begin(), ring.global.end());
+  ring.global.erase(std::unique(ring.global.begin(), ring.global.end()), ring.global.end());
   const auto local = [&](CornerIndex p) {
     return CornerIndex(std::lower_bound(ring.global.begin(), ring.global.end(), p) -
                        ring.global.begin());
@@ -89,28 +100,6 @@ void localFrame(const QuadMesh& mesh, const Topology& t, CornerIndex v, Vec3& no
 }
 
 }  // namespace
-
-std::vector<std::uint32_t> facesNear(const QuadMesh& mesh, const Topology& t, CornerIndex v) {
-  std::vector<std::uint32_t> faces;
-  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f)
-    for (int k = 0; k < cornerCount(mesh.faces[*f]); ++k) {
-      const CornerIndex p = mesh.faces[*f][std::size_t(k)];
-      faces.insert(faces.end(), t.facesBegin(p), t.facesEnd(p));
-    }
-  std::sort(faces.begin(), faces.end());
-  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
-  return faces;
-}
-
-std::vector<CornerIndex> pointsNear(const QuadMesh& mesh, const Topology& t, CornerIndex v) {
-  std::vector<CornerIndex> points;
-  for (const std::uint32_t f : facesNear(mesh, t, v))
-    for (int k = 0; k < cornerCount(mesh.faces[f]); ++k)
-      points.push_back(mesh.faces[f][std::size_t(k)]);
-  std::sort(points.begin(), points.end());
-  points.erase(std::unique(points.begin(), points.end()), points.end());
-  return points;
-}
 
 bool searchDirections(const QuadMesh& mesh, const Topology& t, CornerIndex v,
                       std::array<Vec3, 8>& directions, double& edge) {

@@ -27,14 +27,6 @@ inline bool searchable(const QuadMesh& mesh, const Topology& t, CornerIndex v) {
 bool searchDirections(const QuadMesh& mesh, const Topology& t, CornerIndex v,
                       std::array<Vec3, 8>& directions, double& edge);
 
-/// The faces that touch a corner of a face round v, ascending: those whose shape or fold a move of
-/// v changes or shows (a fold shows in the faces across the edges of v's faces).
-std::vector<std::uint32_t> facesNear(const QuadMesh& mesh, const Topology& t, CornerIndex v);
-
-/// The corners of facesNear(mesh, t, v), ascending: the points whose positions the pattern search
-/// of v reads (improvePoint).
-std::vector<CornerIndex> pointsNear(const QuadMesh& mesh, const Topology& t, CornerIndex v);
-
 /// The summed score of the faces around v (topology `t` of `mesh`).
 Score scoreAround(const QuadMesh& mesh, const Topology& t, CornerIndex v,
                   const QualitySettings& settings);
