@@ -87,6 +87,26 @@ TEST(ReferenceSurface, MatchesBruteForce) {
   }
 }
 
+TEST(Triangle, ClosestPointAgreesWithPlaneProjectionAndEdges) {
+  // Random points round random triangles: the closest point's distance is the independent
+  // route's, and the point lies on the triangle (in its plane, within its edges' distance).
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vec a{u(random), u(random), u(random)}, b{u(random), u(random), u(random)},
+        c{u(random), u(random), u(random)}, p{u(random), u(random), u(random)};
+    const Vec q = voxremesh::closestPointOnTriangle(p, a, b, c);
+    const double d = std::sqrt(dot(sub(p, q), sub(p, q)));
+    EXPECT_NEAR(d, triangleDistance(p, a, b, c), 1e-9);
+    EXPECT_NEAR(triangleDistance(q, a, b, c), 0.0, 1e-9);
+  }
+  // A degenerate triangle (three points on a line) gives the closest point of the segment.
+  const Vec q = voxremesh::closestPointOnTriangle({1.0, 1.0, 0.0}, {0.0, 0.0, 0.0}, {2.0, 0.0, 0.0},
+                                                  {4.0, 0.0, 0.0});
+  EXPECT_DOUBLE_EQ(q[0], 1.0);
+  EXPECT_DOUBLE_EQ(q[1], 0.0);
+}
+
 TEST(ReferenceSurface, ExactTiesGoToTheFirstFaceWhateverTheHint) {
   // Every face twice (the second copy after all the first ones): each triangle has a twin at
   // exactly the same distance, so the first copy must win every query, with any hint, including

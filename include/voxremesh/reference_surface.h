@@ -93,6 +93,13 @@ std::array<double, 3> closestPointOnSegment(const std::array<double, 3>& p,
                                             const std::array<double, 3>& a,
                                             const std::array<double, 3>& b);
 
+/// The closest point of triangle (a, b, c) to p (Ericson, Real-Time Collision Detection 5.1.5);
+/// a degenerate triangle gives the closest point of its edges.
+std::array<double, 3> closestPointOnTriangle(const std::array<double, 3>& p,
+                                             const std::array<double, 3>& a,
+                                             const std::array<double, 3>& b,
+                                             const std::array<double, 3>& c);
+
 /// The closest point of a polyline to p (the first segment wins exact ties); a closed polyline
 /// also has the segment from its last point back to its first. A single point is its own closest
 /// point. Precondition: points is not empty (std::invalid_argument otherwise).

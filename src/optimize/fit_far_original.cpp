@@ -40,6 +40,20 @@ std::vector<Face> facesAround(const QuadMesh& mesh, const opt::Topology& t, Corn
   return faces;
 }
 
+/// The distance from p to the nearest of `faces` of `mesh`, each cut into triangles as
+/// ReferenceSurface cuts it (p0-p1-p2, and p0-p2-p3 for a quad).
+double distanceToFaces(const QuadMesh& mesh, const std::vector<Face>& faces, const Vec3& p) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const Face& face : faces)
+    for (int k = 2; k < cornerCount(face); ++k) {
+      const Vec3& a = mesh.points[face[0]];
+      const Vec3 q = closestPointOnTriangle(p, a, mesh.points[face[std::size_t(k - 1)]],
+                                            mesh.points[face[std::size_t(k)]]);
+      nearest = std::min(nearest, distance(p, q));
+    }
+  return nearest;
+}
+
 /// A sample of the original near a point's faces, with its distance to them before any move.
 struct NearSample {
   Vec3 point;
@@ -53,19 +67,10 @@ struct NearSample {
 /// faces moved farther than `moved`): it stays within.
 double excessNear(const QuadMesh& mesh, const std::vector<Face>& faces,
                   const std::vector<NearSample>& near, double moved, double far) {
-  QuadMesh patch;
-  for (Face face : faces) {
-    for (int k = 0; k < cornerCount(face); ++k) {
-      patch.points.push_back(mesh.points[face[std::size_t(k)]]);
-      face[std::size_t(k)] = CornerIndex(patch.points.size() - 1);
-    }
-    patch.faces.push_back(face);
-  }
-  const ReferenceSurface surface(patch);
   double excess = 0.0;
   for (const NearSample& s : near) {
     if (s.before + moved <= far) break;
-    const double d = surface.closestPoint(s.point).distance;
+    const double d = distanceToFaces(mesh, faces, s.point);
     if (d > std::max(s.before, far)) return std::numeric_limits<double>::infinity();
     if (d > far) excess += (d - far) * (d - far);
   }
