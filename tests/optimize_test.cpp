@@ -9,6 +9,7 @@
 #include <cstring>
 #include <functional>
 #include <map>
+#include <optional>
 #include <random>
 #include <set>
 
@@ -804,6 +805,39 @@ TEST(OptimizeQuadMesh, RefusesBadSettings) {
   settings = {};
   settings.quality.maxWarpingDeg = std::nan("");
   EXPECT_THROW(voxremesh::optimizeQuadMesh(mesh, surface, settings), voxremesh::SettingError);
+}
+
+TEST(OptimizeQuadMesh, TheWarpingRemovalFollowsTheCriteriaUnlessSet) {
+  // A grid whose inner points are lifted alternately up and down: its quads warp by about 10
+  // degrees, the original surface the same. Unset, the removal's threshold is kWarpingRemovalShare
+  // of the criteria's warping limit: with a limit of 10 it works as with 8 set, and leaves fewer
+  // quads warped past 8 degrees than under the default limit of 15.
+  const int n = 8;
+  QuadMesh lifted = grid(n);
+  for (int j = 1; j < n; ++j)
+    for (int i = 1; i < n; ++i) lifted.points[j * (n + 1) + i][2] = ((i + j) % 2 ? 0.09 : -0.09);
+  const ReferenceSurface surface(lifted);
+  const auto run = [&](double limit, std::optional<double> warpingDeg,
+                       voxremesh::OptimizeStats& stats) {
+    voxremesh::OptimizeSettings settings;
+    settings.quality.maxWarpingDeg = limit;
+    settings.warpingDeg = warpingDeg;
+    QuadMesh mesh = lifted;
+    voxremesh::optimizeQuadMesh(mesh, surface, settings, &stats);
+    return mesh;
+  };
+  voxremesh::OptimizeStats fromCriteria, set, defaults;
+  const QuadMesh a = run(10.0, std::nullopt, fromCriteria);
+  const QuadMesh b = run(10.0, 10.0 * voxremesh::kWarpingRemovalShare, set);
+  const QuadMesh c = run(15.0, std::nullopt, defaults);
+  EXPECT_EQ(a.faces, b.faces);
+  EXPECT_EQ(a.points, b.points);
+  EXPECT_EQ(fromCriteria.warping.warpedBefore, set.warping.warpedBefore);
+  EXPECT_LT(countWarped(a, 8.0), countWarped(c, 8.0));
+  // A threshold set outside 0 .. 180 is refused.
+  voxremesh::OptimizeStats unused;
+  EXPECT_THROW(run(15.0, std::nan(""), unused), voxremesh::SettingError);
+  EXPECT_THROW(run(15.0, 200.0, unused), voxremesh::SettingError);
 }
 
 /// Boundary loops of a mesh: connected sets of edges that lie in one face.

@@ -21,6 +21,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <optional>
 
 #include "voxremesh/quad_mesh.h"
 #include "voxremesh/quality.h"
@@ -291,14 +292,18 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
                                   const QualitySettings& settings,
                                   const ReconnectSettings& reconnect = {});
 
+/// The warping removal's threshold as a share of the warping criterion's limit when
+/// OptimizeSettings::warpingDeg is unset (12 degrees for the default 15).
+inline constexpr double kWarpingRemovalShare = 0.8;
+
 /// Settings of optimizeQuadMesh.
 struct OptimizeSettings {
   /// Quality limits: targetSize (0: the median edge length of the input mesh) scales the
   /// zero-area threshold; the element criteria decide which triangle pairs merge.
   QualitySettings quality;
-  /// Warping removal threshold, degrees: below the 15-degree criterion so the output keeps a
-  /// margin.
-  double warpingDeg = 12.0;
+  /// Warping removal threshold, degrees, in 0 .. 180; unset: kWarpingRemovalShare x the
+  /// criterion's limit (quality.maxWarpingDeg), so that the output keeps a margin under it.
+  std::optional<double> warpingDeg;
   int warpingIterations = 200;
   /// Relaxation iterations before and after triangle merging, and the damping of each step
   /// (0 < damping <= 0.7, see relaxMesh).

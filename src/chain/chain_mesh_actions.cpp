@@ -73,7 +73,7 @@ void runOptimize(ChainState& state, const ActionCall& call) {
   OptimizeSettings settings;
   if (call.has("criteria")) readCriteriaFile(call.text("criteria"), settings.quality);
   settings.quality.targetSize = positiveSize(call, "size", source.targetSize);
-  settings.warpingDeg = call.number("warping");
+  if (call.has("warping")) settings.warpingDeg = call.number("warping");
   settings.warpingIterations = count(call, "iterations");
   settings.relaxIterations = count(call, "relax");
   settings.relaxDamping = call.number("damping");

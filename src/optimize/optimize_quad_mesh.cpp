@@ -19,8 +19,8 @@ double secondsSince(Clock::time_point start) {
 
 void checkOptimizeSettings(const OptimizeSettings& s) {
   checkQualitySettings(s.quality);
-  if (!std::isfinite(s.warpingDeg) || s.warpingDeg < 0.0 || s.warpingDeg > 180.0)
-    throw SettingError("optimize: warpingDeg " + std::to_string(s.warpingDeg) +
+  if (s.warpingDeg && !(*s.warpingDeg >= 0.0 && *s.warpingDeg <= 180.0))
+    throw SettingError("optimize: warpingDeg " + std::to_string(*s.warpingDeg) +
                        " is outside 0 .. 180");
   if (s.warpingIterations < 0 || s.relaxIterations < 0 || s.improveSweeps < 0 ||
       s.reconnectRounds < 0 || s.fitPasses < 0)
@@ -131,7 +131,9 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
     if (s.edgesRotated > 0 && improve) improveFailing();
   }
   const Clock::time_point t = Clock::now();
-  s.warping = removeWarping(mesh, settings.warpingDeg, settings.warpingIterations,
+  const double warpingDeg =
+      settings.warpingDeg.value_or(kWarpingRemovalShare * quality.maxWarpingDeg);
+  s.warping = removeWarping(mesh, warpingDeg, settings.warpingIterations,
                             settings.warpingMoveFactor * quality.targetSize);
   s.warpingSeconds = secondsSince(t);
   // Folds out before the last passes, which then work on the filled regions too.
