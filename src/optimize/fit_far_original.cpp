@@ -111,29 +111,21 @@ bool pullCorner(QuadMesh& mesh, const opt::Topology& t, CornerIndex v, const Pas
   double best = 0.0;
   for (const NearSample& sample : near)
     if (sample.before > far) best += (sample.before - far) * (sample.before - far);
-  Vec3 position = start;
   std::uint32_t hint = kNoCorner;
-  for (double step = 0.25 * edge; step > 0.06 * edge; step *= 0.5) {
-    bool improved = true;
-    for (int round = 0; improved && round < 3; ++round) {
-      improved = false;
-      for (const Vec3& direction : directions) {
-        const SurfaceHit hit = pass.original.closestPoint(position + direction * step, hint);
-        hint = hit.face;
-        mesh.points[v] = hit.point;
-        if (opt::scoreAround(mesh, t, v, pass.settings).failures > failuresBefore) continue;
-        const double excess = excessNear(mesh, around, near, distance(hit.point, start), far);
-        if (!(excess < best * (1.0 - 1e-9))) continue;
-        if (opt::chordError(mesh, around, pass.original) > chordAllowed) continue;
-        best = excess;
-        position = hit.point;
-        improved = true;
-        break;
-      }
-    }
-  }
-  mesh.points[v] = position;
-  return position != start;
+  const auto place = [&](const Vec3& wanted) {
+    const SurfaceHit hit = pass.original.closestPoint(wanted, hint);
+    hint = hit.face;
+    return hit.point;
+  };
+  const auto accept = [&](const Vec3& at) {
+    if (opt::scoreAround(mesh, t, v, pass.settings).failures > failuresBefore) return false;
+    const double excess = excessNear(mesh, around, near, distance(at, start), far);
+    if (!(excess < best * (1.0 - 1e-9))) return false;
+    if (opt::chordError(mesh, around, pass.original) > chordAllowed) return false;
+    best = excess;
+    return true;
+  };
+  return opt::compassSearch(mesh, v, directions, edge, 0.06, 3, place, accept);
 }
 
 /// A face nearest to a far sample, and its corners that may move, the nearest to the sample first.

@@ -214,26 +214,14 @@ bool improvePoint(QuadMesh& mesh, const Topology& t, const ReferenceSurface& ori
     }
     return foldedWithVAt(*ring, at) <= foldedBefore;
   };
-  Vec3 position = start;
-  for (double step = 0.25 * edge; step > smallestStep * edge; step *= 0.5) {
-    bool improved = true;
-    for (int round = 0; improved && round < movesPerStep; ++round) {
-      improved = false;
-      for (const Vec3& direction : directions) {
-        mesh.points[v] = place(position + direction * step);
-        if (onFixedPoint(mesh.points[v])) continue;
-        Score score;
-        if (scoresBetter(mesh, faces, settings, best, score) && foldsNoMore(mesh.points[v])) {
-          best = score;
-          position = mesh.points[v];
-          improved = true;
-          break;
-        }
-      }
-    }
-  }
-  mesh.points[v] = position;
-  return position != start;
+  const auto accept = [&](const Vec3& at) {
+    Score score;
+    if (onFixedPoint(at) || !scoresBetter(mesh, faces, settings, best, score) || !foldsNoMore(at))
+      return false;
+    best = score;
+    return true;
+  };
+  return compassSearch(mesh, v, directions, edge, smallestStep, movesPerStep, place, accept);
 }
 
 }  // namespace voxremesh::opt

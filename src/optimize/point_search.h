@@ -27,6 +27,37 @@ inline bool searchable(const QuadMesh& mesh, const Topology& t, CornerIndex v) {
 bool searchDirections(const QuadMesh& mesh, const Topology& t, CornerIndex v,
                       std::array<Vec3, 8>& directions, double& edge);
 
+/// The compass search of point v: steps of a quarter of `edge`, halved while above
+/// `smallestStep` x `edge`, at most `movesPerStep` moves per step length, in `directions`
+/// (searchDirections). Each try puts v at place(wanted) and is taken when accept(that position)
+/// says so (accept reads the mesh with v there and keeps its own record of the best so far).
+/// Leaves v at the last position taken; returns whether v moved.
+template <class Place, class Accept>
+bool compassSearch(QuadMesh& mesh, CornerIndex v, const std::array<Vec3, 8>& directions,
+                   double edge, double smallestStep, int movesPerStep, const Place& place,
+                   const Accept& accept) {
+  const Vec3 start = mesh.points[v];
+  Vec3 position = start;
+  for (double step = 0.25 * edge; step > smallestStep * edge; step *= 0.5) {
+    bool improved = true;
+    for (int round = 0; improved && round < movesPerStep; ++round) {
+      improved = false;
+      for (const Vec3& direction : directions) {
+        const Vec3 wanted{position[0] + direction[0] * step, position[1] + direction[1] * step,
+                          position[2] + direction[2] * step};
+        mesh.points[v] = place(wanted);
+        if (accept(mesh.points[v])) {
+          position = mesh.points[v];
+          improved = true;
+          break;
+        }
+      }
+    }
+  }
+  mesh.points[v] = position;
+  return position != start;
+}
+
 /// The summed score of the faces around v (topology `t` of `mesh`).
 Score scoreAround(const QuadMesh& mesh, const Topology& t, CornerIndex v,
                   const QualitySettings& settings);
