@@ -259,20 +259,22 @@ int main(int argc, char** argv) {
       compareThreads(in, dir, options.settings, options.repeat);
     } else {
       const RemeshRun run = timedRemesh(in, dir / "out.k", options.settings);
-      double volume = 0, extract = 0, optimize = 0;
+      double volume = 0, extract = 0, optimize = 0, accept = 0, whole = 0;
       for (const RemeshedPart& p : run.report.parts) {
         volume += p.volumeSeconds;
         extract += p.extractSeconds;
         optimize += p.optimizeSeconds;
+        accept += p.acceptSeconds;
+        whole += p.totalSeconds;
       }
       std::printf("deck: %zu parts, %zu shells -> %zu shells\n", run.report.parts.size(),
                   run.before, run.after);
       std::printf(
-          "total %.2f s: read %.2f s, remesh %.2f s wall (part-seconds, each part's own: "
-          "sheets+volume %.2f, extract %.2f, optimise %.2f; assembly %.2f s), write "
-          "%.2f s\n",
-          run.total, run.read, run.remesh, volume, extract, optimize, run.report.assemblySeconds,
-          run.write);
+          "total %.2f s: read %.2f s, remesh %.2f s wall, write %.2f s\n"
+          "part-seconds (each part's own): %.2f, of which volume %.2f, extract %.2f, optimise "
+          "%.2f, acceptance %.2f, other (sheets, plans, seams) %.2f; assembly %.2f s\n",
+          run.total, run.read, run.remesh, run.write, whole, volume, extract, optimize, accept,
+          whole - volume - extract - optimize - accept, run.report.assemblySeconds);
       std::printf("peak memory %ld MB (before the OpenVDB comparison)\n", peakMegabytes());
       const FeModel original = readDeck(in);
       std::vector<Id> parts;

@@ -193,6 +193,10 @@ struct RemeshedPart {
   double volumeSeconds = 0.0;    ///< sheets and volume
   double extractSeconds = 0.0;   ///< extraction
   double optimizeSeconds = 0.0;  ///< quad optimisation
+  double acceptSeconds = 0.0;    ///< acceptance: quality, distance and topology of each mesh
+  /// The whole part: sheets, their plans, every attempt and its acceptance, and a second pass
+  /// when the part was remeshed again beside kept neighbours (then every time here is the sum).
+  double totalSeconds = 0.0;
 };
 
 /// What remeshDeck did.

@@ -36,6 +36,15 @@ double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// Adds the stage times of an earlier pass over a part to `part`'s.
+void addPartTimes(RemeshedPart& part, const RemeshedPart& earlier) {
+  part.volumeSeconds += earlier.volumeSeconds;
+  part.extractSeconds += earlier.extractSeconds;
+  part.optimizeSeconds += earlier.optimizeSeconds;
+  part.acceptSeconds += earlier.acceptSeconds;
+  part.totalSeconds += earlier.totalSeconds;
+}
+
 /// Nodes of a part closer than this share of its target size are one node of its surface: a
 /// slit between them is no boundary a remesh could keep.
 constexpr double kCoincidentShare = 1e-3;
@@ -487,11 +496,14 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
         // Isolated: a thread waiting inside this part's parallel loops runs none of another
         // part's work, so that the part's stage times are its own.
         RemeshedPart result;
+        const auto partStart = std::chrono::steady_clock::now();
         tbb::this_task_arena::isolate([&] {
           result = pipeline::remeshPart(
               models[i], plans[i], halved ? halvedSettings : settings, surroundings, meshes[i],
               [&](const char* stage) { tell(stage, plans[i].part, false); });
         });
+        result.totalSeconds = since(partStart);
+        if (!first) addPartTimes(result, report.parts[i]);
         if (halved && first)
           describeHalved(result, fullSizeReason[i], halvedSize);
         else if (!first && result.status == PartStatus::Kept)
@@ -629,7 +641,9 @@ std::string remeshReportJson(const RemeshReport& report) {
         {"junction_length_lost", a.junctionLengthLost},
         {"volume_seconds", part.volumeSeconds},
         {"extract_seconds", part.extractSeconds},
-        {"optimize_seconds", part.optimizeSeconds}};
+        {"optimize_seconds", part.optimizeSeconds},
+        {"accept_seconds", part.acceptSeconds},
+        {"seconds", part.totalSeconds}};
     for (const auto& [key, value] : numbers) {
       out += std::string(", \"") + key + "\": ";
       if (std::isfinite(value))

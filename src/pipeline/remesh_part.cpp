@@ -515,8 +515,10 @@ RemeshedPart remeshPart(const FeModel& model, const PartPlan& plan, const Remesh
                                       junctionSpacing, part, folded, size, stage);
       part.voxelSize = size;
       at = "size " + formatNumber(size) + ": ";
+      const auto acceptStart = std::chrono::steady_clock::now();
       part.acceptance = acceptPartMesh(candidate, original, folded, size, plan.targetSize,
                                        settings.optimizeSettings.quality, channels);
+      part.acceptSeconds += since(acceptStart);
       const std::size_t missing = missingPoints(candidate, hardPositions);
       if (part.acceptance.accepted && missing > 0) {
         failures.push_back(at + std::to_string(missing) + " of its " +

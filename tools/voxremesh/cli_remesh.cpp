@@ -118,8 +118,7 @@ std::string remeshSummary(const RemeshReport& report) {
         line, sizeof line, "  %-8lld %-8s %6zu %8zu %7zu %9.4g %7.2f %% %10.4g %7zu %8.2f\n",
         static_cast<long long>(part.plan.part), partStatusName(part.status), part.plan.shells,
         kept ? part.plan.shells : a.elements, a.trias, kept ? part.plan.targetSize : part.voxelSize,
-        100.0 * a.failingShare, kept ? 0.0 : a.distance, a.folded,
-        part.volumeSeconds + part.extractSeconds + part.optimizeSeconds);
+        100.0 * a.failingShare, kept ? 0.0 : a.distance, a.folded, part.totalSeconds);
     text += line;
     if (!part.reason.empty())
       reasons += "  part " + std::to_string(part.plan.part) + " " + partStatusName(part.status) +
