@@ -586,12 +586,6 @@ void expectPlantedBadPairRecut(
   EXPECT_THROW(recut(mesh, settings), std::invalid_argument);
 }
 
-TEST(RotateFailingEdges, RecutsAPlantedBadPairBackIntoSquares) {
-  expectPlantedBadPairRecut([](QuadMesh& mesh, voxremesh::QualitySettings& settings) {
-    return voxremesh::rotateFailingEdges(mesh, settings);
-  });
-}
-
 TEST(EngineRecut, RecutsAPlantedBadPairBackIntoSquares) {
   // The search engine's recut of a pair of faces, without searches.
   expectPlantedBadPairRecut([](QuadMesh& mesh, voxremesh::QualitySettings& settings) {
@@ -1059,13 +1053,5 @@ TEST(EngineRecut, NeverFoldsMoreFacesThanItFound) {
   EXPECT_GT(expectNoNewFolds([&](QuadMesh& mesh) {
               return engineWithoutSearches(mesh, settings, voxremesh::kRecutPair);
             }),
-            0u);
-}
-
-TEST(RotateFailingEdges, NeverFoldsMoreFacesThanItFound) {
-  voxremesh::QualitySettings settings;
-  settings.targetSize = 1.0;
-  EXPECT_GT(expectNoNewFolds(
-                [&](QuadMesh& mesh) { return voxremesh::rotateFailingEdges(mesh, settings); }),
             0u);
 }

@@ -171,22 +171,6 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
 std::size_t splitLongEdges(QuadMesh& mesh, double maxLength, const ReferenceSurface* surface,
                            double chordTolerance = 0.0, int maxRounds = 3);
 
-/// Edge rotation: for every face failing a criterion (quality.h, under `settings`), in index
-/// order, each edge it shares with one other face (oriented alike, neither face changed yet in
-/// this round) is a diagonal of the polygon of 4 to 6 corners the two make; the two faces are
-/// replaced by the cut along another diagonal (quad + quad, quad + triangle, triangle + triangle,
-/// as before) whose faces score better: fewer failed criteria, else a smaller penalty (the one
-/// improveFailingElements uses). An edge between two constrained points (it may run along a
-/// curve) is not removed, a diagonal between two constrained points or along an existing edge is
-/// not made, neither end of the removed edge may be left in fewer than 3 faces (2 on the
-/// boundary), and no new face may point more than 120 degrees away from a face across one of its
-/// edges (a fold, quality.h). Rounds repeat until none rotates or `maxRounds` is reached. Serial,
-/// deterministic; points do not move.
-/// @return the number of edges rotated
-/// Throws std::invalid_argument for settings.targetSize <= 0, negative rounds or a bad mesh;
-/// SettingError for bad settings.
-std::size_t rotateFailingEdges(QuadMesh& mesh, const QualitySettings& settings, int maxRounds = 5);
-
 /// Inverted and flat-cornered quads: a quad with exactly one reflex corner (det J <= 0 there,
 /// with quality.h's corner Jacobian: a negative Jacobian ratio, which solvers refuse) or corner
 /// of `degenerateCornerDeg` degrees or more (where solvers cannot estimate the shell normal)
@@ -311,8 +295,9 @@ struct OptimizeSettings {
   double relaxDamping = 0.5;
   bool collapseRhombic = true;
   bool mergeTriangles = true;
-  /// Rotate edges of failing faces after the first improveFailingElements pass (and improve again
-  /// when any rotated).
+  /// Recut pairs of faces round failing faces (edge rotations: the search engine with kRecutPair
+  /// alone, no searches, 5 rounds) after the first improveFailingElements pass, and improve again
+  /// when any was recut.
   bool rotateEdges = true;
   /// Sweeps of each improveFailingElements pass (before and after warping removal; 0: none): a
   /// point moved in one sweep opens moves for its neighbours in the next.
@@ -364,12 +349,12 @@ struct OptimizeStats {
   std::size_t rhombicCollapsed = 0;
   std::size_t trianglesMerged = 0;  ///< quads made from triangle pairs
   std::size_t improvedMoves = 0;    ///< points moved by improveFailingElements
-  std::size_t edgesRotated = 0;
-  std::size_t reconnected = 0;    ///< neighbourhoods changed by reconnectFailingFaces
-  std::size_t farPulls = 0;       ///< points pulled towards far original places
-  std::size_t failingSplit = 0;   ///< failing quads split into two triangles (the last phase)
-  std::size_t invertedSplit = 0;  ///< quads with a reflex corner split into two triangles (last)
-  std::size_t foldsRefilled = 0;  ///< fold regions untangled or refilled (both passes)
+  std::size_t edgesRotated = 0;     ///< pairs of faces recut by the engine's first phase
+  std::size_t reconnected = 0;      ///< neighbourhoods changed by reconnectFailingFaces
+  std::size_t farPulls = 0;         ///< points pulled towards far original places
+  std::size_t failingSplit = 0;     ///< failing quads split into two triangles (the last phase)
+  std::size_t invertedSplit = 0;    ///< quads with a reflex corner split into two triangles (last)
+  std::size_t foldsRefilled = 0;    ///< fold regions untangled or refilled (both passes)
   WarpingResult warping;
 };
 

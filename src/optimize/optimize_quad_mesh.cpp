@@ -110,9 +110,10 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
     s.improvedMoves += improveFailingElements(mesh, original, quality, settings.improveSweeps);
     s.improveSeconds += secondsSince(t);
   };
-  // The search engine (reconnectFailingFaces) in two phases: every edit but the quad split, with
-  // searches, after the warping removal; last the quads two triangles do better than split,
-  // within the triangle share, until none is (a split locks its neighbourhood for the round).
+  // The search engine (reconnectFailingFaces) in three phases: pairs of faces recut, without
+  // searches, after the first improvement pass; every edit but the quad split, with searches,
+  // after the warping removal; last the quads two triangles do better than split, within the
+  // triangle share, until none is (a split locks its neighbourhood for the round).
   const auto engine = [&](int rounds, int sweeps, unsigned edits) {
     ReconnectSettings reconnect;
     reconnect.rounds = rounds;
@@ -122,11 +123,11 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
     return reconnectFailingFaces(mesh, original, quality, reconnect);
   };
   if (improve) improveFailing();
-  // Edge rotation after the first improvement pass, and the improvement again where it rotated
-  // any.
+  // The recut pairs (edge rotations) after the first improvement pass, and the improvement again
+  // where any was recut.
   if (settings.rotateEdges && quality.targetSize > 0.0) {
     const Clock::time_point t = Clock::now();
-    s.edgesRotated = rotateFailingEdges(mesh, quality);
+    s.edgesRotated = engine(5, 0, kRecutPair);
     s.rotateSeconds = secondsSince(t);
     if (s.edgesRotated > 0 && improve) improveFailing();
   }

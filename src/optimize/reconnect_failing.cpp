@@ -239,7 +239,8 @@ bool keepsFaces(const opt::Topology& t, CornerIndex v) {
 
 /// Every other cut of the polygon face f makes with its neighbour across each of its edges: an
 /// edge between two constrained points (it may run along a curve) stays, a diagonal between two
-/// constrained points or along an existing edge is not made.
+/// constrained points or along an existing edge is not made, nor one whose faces turn against
+/// the faces round them (cutKeepsOrientation: a cut outside a non-convex polygon).
 void addRecuts(const QuadMesh& mesh, const opt::Topology& t, std::uint32_t f,
                std::vector<Edit>& edits) {
   const Face& face = mesh.faces[f];
@@ -262,6 +263,7 @@ void addRecuts(const QuadMesh& mesh, const opt::Topology& t, std::uint32_t f,
       const CornerIndex p = polygon[i], q = polygon[opt::diagonalEnd(polygon.size(), i)];
       if (t.edgeFaces(p, q) > 0 || (!isFree(mesh, p) && !isFree(mesh, q))) continue;
       const std::array<Face, 2> cut = opt::cutPolygon(polygon, i);
+      if (!opt::cutKeepsOrientation(mesh, t, f, g, cut)) continue;
       edits.push_back(
           Edit{{std::min(f, g), std::max(f, g)}, {cut[0], cut[1]}, std::nullopt, false});
     }
