@@ -359,8 +359,9 @@ struct OptimizeStats {
 };
 
 /// Runs the steps: edge splitting, clean-up, rhombic collapse, clean-up, relaxation, triangle
-/// merging, relaxation, improvement of the failing elements, edge rotation (and the improvement
-/// again where any rotated), warping removal, the regions round folded faces refilled
+/// merging, relaxation, improvement of the failing elements, edge rotation (the search engine
+/// recutting pairs of faces, no searches; the improvement again where any was recut), warping
+/// removal (OptimizeSettings::warpingDeg), the regions round folded faces refilled
 /// (refillFoldedRegions), the improvement once more (it takes only moves that leave fewer criteria
 /// failing around a point, warping included), the search engine with every edit but the quad split,
 /// points pulled towards the far places of the original (fitFarOriginalPoints), the search engine

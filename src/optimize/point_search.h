@@ -1,5 +1,6 @@
 // The pattern search that moves one point to lower the failures of its faces, shared by
-// improveFailingElements and reconnectFailingFaces (optimize.h).
+// improveFailingElements and reconnectFailingFaces, and the compass search under it, which
+// fitFarOriginalPoints uses with its own acceptance (optimize.h).
 #pragma once
 
 #include <array>
