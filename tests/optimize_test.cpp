@@ -430,6 +430,29 @@ TEST(ImproveFailingElements, MovesPlantedPointsBackUntilNothingFails) {
   EXPECT_THROW(voxremesh::improveFailingElements(mesh, plane, settings), std::invalid_argument);
 }
 
+TEST(ImproveFailingElements, MovesAPointOffAStraightCorner) {
+  // Interior point (2, 2) of a flat 4 x 4 grid put at (1.5, 1.5), on the line between (2, 1) and
+  // (1, 2): the quad (1, 1)-(2, 1)-p-(1, 2) has a 180 degree corner there, which no acceptance
+  // allows. Moving the point alone mends it, on the plane.
+  const int n = 4;
+  QuadMesh mesh = grid(n);
+  const ReferenceSurface plane(grid(n));
+  const CornerIndex p = 2 * (n + 1) + 2;
+  mesh.points[p] = {1.5, 1.5, 0.0};
+  voxremesh::QualitySettings settings;
+  settings.targetSize = 1.0;
+  const auto degenerate = [&] {
+    return voxremesh::assessQuality(mesh, settings)
+        .criteria[static_cast<int>(voxremesh::Criterion::DegenerateCorner)]
+        .failing;
+  };
+  ASSERT_EQ(degenerate(), 1u);
+  EXPECT_GT(voxremesh::improveFailingElements(mesh, plane, settings, 10), 0u);
+  EXPECT_EQ(degenerate(), 0u);
+  EXPECT_EQ(voxremesh::assessQuality(mesh, settings).failingAny, 0u);
+  EXPECT_EQ(voxremesh::test::foldedCount(mesh), 0u);
+  EXPECT_EQ(mesh.points[p][2], 0.0);
+}
 TEST(ImproveFailingElements, JitteredCylinderFailsFarLessStaysOnItAndIgnoresThreads) {
   // Interior points of a quarter cylinder jittered by up to 0.45 of an edge: many quads fail the
   // angle, skew and Jacobian criteria. The pattern search must fix most of them, in parallel
