@@ -24,15 +24,19 @@ struct Samples {
   std::vector<std::uint32_t> face;
 };
 
-/// The centroids of the k x k similar triangles triangle abc is cut into, k the smallest count
-/// that makes their sides at most `spacing` (2 .. 64; 2 when spacing is 0).
-void addInnerSamples(const Point& a, const Point& b, const Point& c, double spacing,
-                     std::uint32_t face, Samples& out) {
+/// The number of parts k each side of triangle abc is cut into: the smallest count that makes
+/// them at most `spacing` long (2 .. 64; 2 when spacing is 0).
+int subdivisions(const Point& a, const Point& b, const Point& c, double spacing) {
   const double longest =
       std::sqrt(std::max({dot(b - a, b - a), dot(c - b, c - b), dot(a - c, a - c)}));
-  int k = 2;
   if (spacing > 0.0 && std::isfinite(longest / spacing))
-    k = std::clamp(static_cast<int>(std::ceil(longest / spacing)), 2, 64);
+    return std::clamp(static_cast<int>(std::ceil(longest / spacing)), 2, 64);
+  return 2;
+}
+
+/// The centroids of the k x k similar triangles triangle abc is cut into (k = subdivisions).
+void addInnerSamples(const Point& a, const Point& b, const Point& c, int k, std::uint32_t face,
+                     Samples& out) {
   const Point u = (b - a) * (1.0 / k), v = (c - a) * (1.0 / k);
   for (int i = 0; i < k; ++i)
     for (int j = 0; i + j < k; ++j) {
@@ -49,10 +53,8 @@ void addInnerSamples(const Point& a, const Point& b, const Point& c, double spac
 /// The samples of a mesh: its points first, then its distinct edges' midpoints, then the points
 /// inside its faces' triangles (p0-p1-p2 and, for quads, p0-p2-p3).
 Samples samplesOf(const QuadMesh& mesh, double spacing) {
-  Samples samples;
-  samples.points = mesh.points;
-  samples.face.assign(mesh.points.size(), Samples::kNoFace);
   std::vector<std::pair<CornerIndex, CornerIndex>> edges;
+  edges.reserve(4 * mesh.faces.size());
   for (const auto& face : mesh.faces) {
     const int n = cornerCount(face);
     for (int k = 0; k < n; ++k) {
@@ -63,17 +65,32 @@ Samples samplesOf(const QuadMesh& mesh, double spacing) {
   }
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  // Per face, the subdivisions of its triangles, so that the samples are allocated once.
+  std::vector<std::array<int, 2>> cuts(mesh.faces.size(), {0, 0});
+  std::size_t count = mesh.points.size() + edges.size();
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& face = mesh.faces[f];
+    for (int t = 0; t + 2 < cornerCount(face); ++t) {
+      const int k = subdivisions(mesh.points[face[0]], mesh.points[face[std::size_t(t) + 1]],
+                                 mesh.points[face[std::size_t(t) + 2]], spacing);
+      cuts[f][std::size_t(t)] = k;
+      count += std::size_t(k) * std::size_t(k);
+    }
+  }
+  Samples samples;
+  samples.points.reserve(count);
+  samples.face.reserve(count);
+  samples.points.insert(samples.points.end(), mesh.points.begin(), mesh.points.end());
+  samples.face.insert(samples.face.end(), mesh.points.size(), Samples::kNoFace);
   for (const auto& [a, b] : edges) {
     samples.points.push_back((mesh.points[a] + mesh.points[b]) * 0.5);
     samples.face.push_back(Samples::kNoFace);
   }
   for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
     const auto& face = mesh.faces[f];
-    addInnerSamples(mesh.points[face[0]], mesh.points[face[1]], mesh.points[face[2]], spacing, f,
-                    samples);
-    if (cornerCount(face) == 4)
-      addInnerSamples(mesh.points[face[0]], mesh.points[face[2]], mesh.points[face[3]], spacing, f,
-                      samples);
+    for (int t = 0; t + 2 < cornerCount(face); ++t)
+      addInnerSamples(mesh.points[face[0]], mesh.points[face[std::size_t(t) + 1]],
+                      mesh.points[face[std::size_t(t) + 2]], cuts[f][std::size_t(t)], f, samples);
   }
   return samples;
 }
