@@ -66,4 +66,31 @@ TEST(IndependentClasses, NoItemOfAClassSeesAnotherOnesChangesOnRandomAccessLists
   EXPECT_EQ(count, items.size());
 }
 
+TEST(RunInClasses, RunsTheReadyItemsClassByClassAndAppliesTheirResultsInItemOrder) {
+  // Item i reads points i and i + 1 and changes point i: neighbours conflict, so the even items
+  // make one class and the odd ones the next. Item 4 is not ready. Each try writes its point (in
+  // parallel) and reads its neighbour, which no item of its class changes.
+  constexpr std::size_t kItems = 9;
+  std::vector<PointAccess> items;
+  for (CornerIndex i = 0; i < kItems; ++i) items.push_back({{i, i + 1}, {i}});
+  std::vector<int> points(kItems + 1, 1);
+  std::vector<std::uint32_t> applied;
+  int classes = 0;
+  voxremesh::opt::runInClasses(
+      items, points.size(), [](std::uint32_t i) { return i != 4; }, [&] { ++classes; },
+      [&](std::uint32_t i) {
+        points[i] += points[i + 1];
+        return points[i] > 2;  // a bool result: one per item, none packed with another
+      },
+      [&](std::uint32_t i, bool raised) {
+        EXPECT_EQ(raised, i % 2 == 1 && i + 1 != 4 && i + 1 < kItems) << i;
+        applied.push_back(i);
+      });
+  EXPECT_EQ(classes, 2);
+  EXPECT_EQ(applied, (std::vector<std::uint32_t>{0, 2, 6, 8, 1, 3, 5, 7}));
+  // The even items added their odd neighbour's 1; the odd ones then their even neighbour's 2, but
+  // 1 from point 4, whose item did not run. The last point no item changes.
+  EXPECT_EQ(points, (std::vector<int>{2, 3, 2, 2, 1, 3, 2, 3, 2, 1}));
+}
+
 }  // namespace

@@ -209,39 +209,31 @@ std::size_t pullTowardsFarSamples(QuadMesh& mesh, const ReferenceSurface& origin
     const PassState state{original, settings, samples, hits, nearestTo, far};
     std::vector<std::uint8_t> locked(mesh.points.size(), 0);
     std::size_t passPulled = 0;
-    for (const std::vector<std::uint32_t>& inClass :
-         opt::independentClasses(access, mesh.points.size())) {
-      std::vector<std::uint32_t> members;
-      for (const std::uint32_t c : inClass) {
-        const Face& face = mesh.faces[candidates[c].face];
-        if (std::none_of(face.begin(), face.begin() + cornerCount(face),
-                         [&](CornerIndex v) { return locked[v] != 0; }))
-          members.push_back(c);
-      }
-      std::vector<CornerIndex> movedCorner(members.size(), kNoCorner);
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, members.size(), 1),
-                        [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t m = r.begin(); m < r.end(); ++m)
-                            for (const CornerIndex v : candidates[members[m]].corners)
-                              if (pullCorner(mesh, t, v, state)) {
-                                movedCorner[m] = v;
-                                break;
-                              }
-                        });
-      for (std::size_t m = 0; m < members.size(); ++m) {
-        const CornerIndex v = movedCorner[m];
-        if (v == kNoCorner) {
-          vainPass[candidates[members[m]].face] = pass;
-          continue;
-        }
-        for (const Face& g : facesAround(mesh, t, v))
-          for (int k = 0; k < cornerCount(g); ++k) {
-            locked[g[std::size_t(k)]] = 1;
-            changedPass[g[std::size_t(k)]] = pass;
+    opt::runInClasses(
+        access, mesh.points.size(),
+        [&](std::uint32_t c) {
+          const Face& face = mesh.faces[candidates[c].face];
+          return std::none_of(face.begin(), face.begin() + cornerCount(face),
+                              [&](CornerIndex v) { return locked[v] != 0; });
+        },
+        [] {},
+        [&](std::uint32_t c) {
+          for (const CornerIndex v : candidates[c].corners)
+            if (pullCorner(mesh, t, v, state)) return v;
+          return kNoCorner;
+        },
+        [&](std::uint32_t c, CornerIndex v) {
+          if (v == kNoCorner) {
+            vainPass[candidates[c].face] = pass;
+            return;
           }
-        ++passPulled;
-      }
-    }
+          for (const Face& g : facesAround(mesh, t, v))
+            for (int k = 0; k < cornerCount(g); ++k) {
+              locked[g[std::size_t(k)]] = 1;
+              changedPass[g[std::size_t(k)]] = pass;
+            }
+          ++passPulled;
+        });
     pulled += passPulled;
     if (passPulled == 0) break;
   }

@@ -1,8 +1,5 @@
 // improveFailingElements: moves the points of failing elements, one at a time, by a pattern
 // search on the surface that lowers the failures of their faces (see optimize.h).
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -54,7 +51,6 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
   const std::vector<std::vector<Vec3>> fixedOnCurve = fixedPointsOnCurves(mesh);
   const std::vector<PolylineIndex> curves = opt::indexCurves(mesh);
   std::size_t moved = 0;
-  std::vector<std::uint8_t> movedNow(mesh.points.size(), 0);
   // A point's search depends only on the positions of the points of its faces: a point whose
   // search left it in place is not searched again until one of those has moved. Stamps count
   // the colour classes processed (0: never); a point searched in vain at stamp s is skipped while
@@ -85,27 +81,24 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
       access[i].writes = {v};
     }
     std::size_t movedThisSweep = 0;
-    for (const std::vector<std::uint32_t>& inClass :
-         opt::independentClasses(access, mesh.points.size())) {
-      std::vector<CornerIndex> points;
-      for (const std::uint32_t i : inClass) points.push_back(failingPoints[i]);
-      points.erase(std::remove_if(points.begin(), points.end(), unchangedSinceSearch),
-                   points.end());
-      ++stamp;
-      const std::vector<Vec3> frozen = mesh.points;
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 8),
-                        [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i < r.end(); ++i)
-                            movedNow[points[i]] =
-                                improvePoint(mesh, topology, original, settings, fixedOnCurve,
-                                             curves, points[i], 0.01, 8, &frozen);
-                        });
-      for (const CornerIndex v : points) {
-        movedThisSweep += movedNow[v];
-        movedAt[v] = movedNow[v] ? stamp : movedAt[v];
-        stayedAt[v] = movedNow[v] ? 0 : stamp;
-      }
-    }
+    std::vector<Vec3> frozen;
+    opt::runInClasses(
+        access, mesh.points.size(),
+        [&](std::uint32_t i) { return !unchangedSinceSearch(failingPoints[i]); },
+        [&] {
+          ++stamp;
+          frozen = mesh.points;
+        },
+        [&](std::uint32_t i) {
+          return improvePoint(mesh, topology, original, settings, fixedOnCurve, curves,
+                              failingPoints[i], 0.01, 8, &frozen);
+        },
+        [&](std::uint32_t i, bool movedNow) {
+          const CornerIndex v = failingPoints[i];
+          movedThisSweep += movedNow;
+          movedAt[v] = movedNow ? stamp : movedAt[v];
+          stayedAt[v] = movedNow ? 0 : stamp;
+        });
     moved += movedThisSweep;
     if (movedThisSweep == 0) break;
   }

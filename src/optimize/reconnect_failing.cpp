@@ -546,40 +546,32 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
     std::vector<opt::PointAccess> access;
     for (const Candidate& c : candidates)
       access.push_back({c.neighbourhood.allPoints, c.neighbourhood.allPoints});
-    for (const std::vector<std::uint32_t>& inClass :
-         opt::independentClasses(access, mesh.points.size())) {
-      std::vector<const Candidate*> members;
-      for (const std::uint32_t i : inClass) {
-        const auto& p = candidates[i].neighbourhood.allPoints;
-        if (std::none_of(p.begin(), p.end(), [&](CornerIndex v) { return locked[v] != 0; }))
-          members.push_back(&candidates[i]);
-      }
-      ++stamp;
-      std::vector<std::optional<Trial>> results(members.size());
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, members.size(), 1),
-                        [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i < r.end(); ++i)
-                            results[i] = bestTrialAt(mesh, t, *members[i], context, splitQuads);
-                        });
-      for (std::size_t i = 0; i < members.size(); ++i) {
-        const Neighbourhood& n = members[i]->neighbourhood;
-        triedAt[mesh.faces[members[i]->face]] = stamp;
-        if (!results[i]) continue;
-        const std::size_t trialTriangles = triangleCount(results[i]->mesh.faces);
-        std::size_t nTriangles = 0;
-        for (const std::uint32_t g : n.faces) nTriangles += cornerCount(mesh.faces[g]) == 3;
-        if (results[i]->split &&
-            !splitFits(results[i]->mesh.faces.size() - n.faces.size(), trialTriangles - nTriangles))
-          continue;
-        faces += results[i]->mesh.faces.size();
-        faces -= n.faces.size();
-        triangles += trialTriangles;
-        triangles -= nTriangles;
-        applyTrial(mesh, n, *results[i], deleted);
-        for (const CornerIndex v : n.allPoints) locked[v] = 1, changedAt[v] = stamp;
-        ++roundChanged;
-      }
-    }
+    opt::runInClasses(
+        access, mesh.points.size(),
+        [&](std::uint32_t i) {
+          const auto& p = candidates[i].neighbourhood.allPoints;
+          return std::none_of(p.begin(), p.end(), [&](CornerIndex v) { return locked[v] != 0; });
+        },
+        [&] { ++stamp; },
+        [&](std::uint32_t i) { return bestTrialAt(mesh, t, candidates[i], context, splitQuads); },
+        [&](std::uint32_t i, std::optional<Trial> result) {
+          const Neighbourhood& n = candidates[i].neighbourhood;
+          triedAt[mesh.faces[candidates[i].face]] = stamp;
+          if (!result) return;
+          const std::size_t trialTriangles = triangleCount(result->mesh.faces);
+          std::size_t nTriangles = 0;
+          for (const std::uint32_t g : n.faces) nTriangles += cornerCount(mesh.faces[g]) == 3;
+          if (result->split &&
+              !splitFits(result->mesh.faces.size() - n.faces.size(), trialTriangles - nTriangles))
+            return;
+          faces += result->mesh.faces.size();
+          faces -= n.faces.size();
+          triangles += trialTriangles;
+          triangles -= nTriangles;
+          applyTrial(mesh, n, *result, deleted);
+          for (const CornerIndex v : n.allPoints) locked[v] = 1, changedAt[v] = stamp;
+          ++roundChanged;
+        });
     if (roundChanged == 0) break;
     changed += roundChanged;
     opt::eraseFaces(mesh, deleted);
