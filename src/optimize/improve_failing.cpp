@@ -51,20 +51,11 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
   const std::vector<std::vector<Vec3>> fixedOnCurve = fixedPointsOnCurves(mesh);
   const std::vector<PolylineIndex> curves = opt::indexCurves(mesh);
   std::size_t moved = 0;
-  // A point's search depends only on the positions of the points of its faces: a point whose
-  // search left it in place is not searched again until one of those has moved. Stamps count
-  // the colour classes processed (0: never); a point searched in vain at stamp s is skipped while
-  // every point of its faces last moved before s. The classes are formed before the skipping, so
-  // the order of the searches, and with it the result, is the same as without it.
-  std::vector<std::uint32_t> movedAt(mesh.points.size(), 0), stayedAt(mesh.points.size(), 0);
+  // A point searched in vain is not searched again until a point of its faces has moved
+  // (SearchRecord); stamps count the classes processed. The classes are formed before the
+  // skipping, so the order of the searches, and with it the result, is the same as without it.
+  opt::SearchRecord record(mesh.points.size());
   std::uint32_t stamp = 0;
-  auto unchangedSinceSearch = [&](CornerIndex v) {
-    if (stayedAt[v] == 0) return false;
-    for (const std::uint32_t* f = topology.facesBegin(v); f != topology.facesEnd(v); ++f)
-      for (int k = 0; k < cornerCount(mesh.faces[*f]); ++k)
-        if (movedAt[mesh.faces[*f][std::size_t(k)]] >= stayedAt[v]) return false;
-    return true;
-  };
   for (int sweep = 0; sweep < sweeps; ++sweep) {
     // Points that share no face do not see each other's moves in their faces' scores: the points
     // of one class are improved in parallel, the classes one after another. Their fold checks
@@ -84,7 +75,9 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
     std::vector<Vec3> frozen;
     opt::runInClasses(
         access, mesh.points.size(),
-        [&](std::uint32_t i) { return !unchangedSinceSearch(failingPoints[i]); },
+        [&](std::uint32_t i) {
+          return !record.unchangedSinceSearch(mesh, topology, failingPoints[i]);
+        },
         [&] {
           ++stamp;
           frozen = mesh.points;
@@ -94,10 +87,8 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
                               failingPoints[i], 0.01, 8, &frozen);
         },
         [&](std::uint32_t i, bool movedNow) {
-          const CornerIndex v = failingPoints[i];
           movedThisSweep += movedNow;
-          movedAt[v] = movedNow ? stamp : movedAt[v];
-          stayedAt[v] = movedNow ? 0 : stamp;
+          record.note(failingPoints[i], movedNow, stamp);
         });
     moved += movedThisSweep;
     if (movedThisSweep == 0) break;

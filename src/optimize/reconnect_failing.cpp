@@ -62,11 +62,9 @@ struct Trial {
   std::vector<CornerIndex> global;    ///< global index per point of `mesh`
   opt::Topology topology;             ///< of `mesh`
   std::vector<CornerIndex> searched;  ///< local indexes of the points searched, ascending
-  /// Per point, the search stamp at which it last moved, and at which a search left it in place
-  /// (0: since it last moved, none has).
-  std::vector<std::uint32_t> movedAt, stayedAt;
-  std::uint32_t stamp = 0;
-  bool converged = false;  ///< a whole sweep moved no point
+  opt::SearchRecord searches;         ///< per point, the searches so far (SearchRecord)
+  std::uint32_t stamp = 0;            ///< raised before each search
+  bool converged = false;             ///< a whole sweep moved no point
   opt::Score score;
   double chord = 0.0;     ///< chordError of its faces
   std::size_t folds = 0;  ///< faces of `mesh` folded against their neighbours (foldedFaces)
@@ -158,8 +156,7 @@ Trial buildTrial(const QuadMesh& mesh, const opt::Topology& t, const Neighbourho
     if ((!edit.merge || v != edit.merge->remove) && opt::searchable(mesh, t, v))
       trial.searched.push_back(local(v));
   trial.split = edit.split;
-  trial.movedAt.assign(trial.global.size(), 0);
-  trial.stayedAt.assign(trial.global.size(), 0);
+  trial.searches = opt::SearchRecord(trial.global.size());
   return trial;
 }
 
@@ -169,28 +166,15 @@ void searchTrial(Trial& trial, const ReferenceSurface& original, const QualitySe
                  const std::vector<std::vector<Vec3>>& fixedOnCurve,
                  const std::vector<PolylineIndex>& curves, int sweeps) {
   const opt::Topology& t = trial.topology;
-  // A search that left its point in place would do so again until a point of its faces moves
-  // (as in improveFailingElements): such points are skipped, with the same result.
-  auto unchangedSinceSearch = [&](CornerIndex v) {
-    if (trial.stayedAt[v] == 0) return false;
-    for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f)
-      for (int k = 0; k < cornerCount(trial.mesh.faces[*f]); ++k)
-        if (trial.movedAt[trial.mesh.faces[*f][std::size_t(k)]] >= trial.stayedAt[v]) return false;
-    return true;
-  };
+  // A point searched in vain is skipped until a point of its faces moves (SearchRecord).
   for (int sweep = 0; sweep < sweeps && !trial.converged; ++sweep) {
     bool moved = false;
     for (const CornerIndex v : trial.searched) {
-      if (unchangedSinceSearch(v)) continue;
-      ++trial.stamp;
-      if (opt::improvePoint(trial.mesh, t, original, settings, fixedOnCurve, curves, v,
-                            kTrialSmallestStep, kTrialMovesPerStep)) {
-        trial.movedAt[v] = trial.stamp;
-        trial.stayedAt[v] = 0;
-        moved = true;
-      } else {
-        trial.stayedAt[v] = trial.stamp;
-      }
+      if (trial.searches.unchangedSinceSearch(trial.mesh, t, v)) continue;
+      const bool movedNow = opt::improvePoint(trial.mesh, t, original, settings, fixedOnCurve,
+                                              curves, v, kTrialSmallestStep, kTrialMovesPerStep);
+      trial.searches.note(v, movedNow, ++trial.stamp);
+      moved = moved || movedNow;
     }
     trial.converged = !moved;
   }
