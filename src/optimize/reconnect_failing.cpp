@@ -425,11 +425,20 @@ std::optional<Trial> bestTrialAt(const QuadMesh& mesh, const opt::Topology& t, c
                         Trial& trial = trials[order[i]];
                         searchTrial(trial, context.original, settings, context.fixedOnCurve,
                                     context.curves, context.sweeps - 1);
+                        if (trial.score.failures >= before.failures) continue;
                         trial.chord =
                             opt::chordError(trial.mesh, trial.mesh.faces, context.original);
                         trial.folds = foldedCount(trial.mesh);
                       }
                     });
+  // A try failing as many criteria as the neighbourhood is never taken, and never stands in the
+  // way of one failing fewer (that one scores better): only those failing fewer are measured
+  // (above) and compared.
+  order.erase(
+      std::remove_if(order.begin(), order.end(),
+                     [&](std::size_t i) { return trials[i].score.failures >= before.failures; }),
+      order.end());
+  if (order.empty()) return std::nullopt;
   // Only tries whose faces stay as close to the original as half the distance limit, or as the
   // neighbourhood's faces were, take part; a face with a degenerate corner, which no acceptance
   // allows, may use the whole limit.
@@ -452,7 +461,7 @@ std::optional<Trial> bestTrialAt(const QuadMesh& mesh, const opt::Topology& t, c
     if (trials[i].chord <= allowed && foldsAllowed(trials[i]) &&
         (!best || trials[i].score.betterThan(trials[*best].score)))
       best = i;
-  if (!best || !(trials[*best].score.failures < before.failures)) return std::nullopt;
+  if (!best) return std::nullopt;
   return std::move(trials[*best]);
 }
 
