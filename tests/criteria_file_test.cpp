@@ -8,6 +8,7 @@
 #include <string>
 
 #include "support/test_support.h"
+#include "support/unit_grid.h"
 #include "voxremesh/criteria_file.h"
 #include "voxremesh/errors.h"
 #include "voxremesh/extract.h"
@@ -40,6 +41,8 @@ void expectSameCriteria(const QualitySettings& a, const QualitySettings& b) {
   EXPECT_EQ(a.maxTriangleShare, b.maxTriangleShare);
   EXPECT_EQ(a.maxFailingShare, b.maxFailingShare);
   EXPECT_EQ(a.jacobianAtGaussPoints, b.jacobianAtGaussPoints);
+  EXPECT_EQ(a.minLengthAbsolute, b.minLengthAbsolute);
+  EXPECT_EQ(a.distanceAbsolute, b.distanceAbsolute);
 }
 
 /// The line an InputError names for criteria `text`, or 0 when it parses; `settings` unchanged
@@ -72,7 +75,10 @@ TEST(CriteriaFile, WhatAFileWritesReadsBackAndWhatItOmitsStays) {
   QualitySettings changed;
   changed.maxWarpingDeg = 10.0;
   changed.index[std::size_t(Criterion::Warping)] = {0.0, 2.0, 8.0, 25.0, 3.0};
-  changed.minLengthFactor = 0.4;
+  changed.minLengthFactor = 2.5;  // in model units
+  changed.minLengthAbsolute = true;
+  changed.index[std::size_t(Criterion::MinLength)] = {6.0, 5.0, 4.0, 1.0, 1.0};
+  changed.maxDistanceFactor = 0.3;  // x the size
   changed.maxTriangleShare = 0.1;
   changed.jacobianAtGaussPoints = true;
   QualitySettings read;
@@ -92,7 +98,8 @@ TEST(CriteriaFile, BadLinesAreRefusedWithTheirLine) {
   EXPECT_EQ(errorLine("warping 0 5 10 15 30\n\naspect 1 2 4 5\n"), 3u);    // four values
   EXPECT_EQ(errorLine("warping 0 5 20 15 30\n"), 1u);                      // out of order
   EXPECT_EQ(errorLine("# c\nquad_min_angle 90 75 60 70 20\n"), 2u);        // a minimum
-  EXPECT_EQ(errorLine("min_length 1 0.8 0.6 0.5 0.2\n"), 1u);              // a length without h
+  EXPECT_EQ(errorLine("min_length 1 0.8 0.6 0.5 0.2\n"), 0u);              // in model units
+  EXPECT_EQ(errorLine("min_length 1h 0.8h 0.6 0.5h 0.2h\n"), 1u);          // both kinds
   EXPECT_EQ(errorLine("skew 0h 10 30 40 60\n"), 1u);                       // an angle with h
   EXPECT_EQ(errorLine("warp 0 5 10 15 30\n"), 1u);                         // unknown
   EXPECT_EQ(errorLine("taper 0 .2 .5 .6 .9\ntaper 0 .2 .5 .6 .9\n"), 2u);  // twice
@@ -109,6 +116,36 @@ TEST(CriteriaFile, BadLinesAreRefusedWithTheirLine) {
         readCriteriaFile("/nonexistent/criteria.txt", s);
       },
       InputError);
+}
+
+TEST(CriteriaFile, LengthsInModelUnitsDoNotScaleWithTheSize) {
+  // Unit squares: minimum element length 1. A limit of 0.5h fails them once the size passes 2;
+  // a limit of 1.5 in model units fails them whatever the size, and one of 0.8 never does. The
+  // quality index follows the thresholds as given.
+  const QuadMesh grid = test::unitGrid(3);
+  const auto failingMinLength = [&](const std::string& line, double size) {
+    QualitySettings settings;
+    parseCriteria(line, "test.txt", settings);
+    settings.targetSize = size;
+    return assessQuality(grid, settings).failing(Criterion::MinLength);
+  };
+  const std::string relative = "min_length 1h 0.8h 0.6h 0.5h 0.2h\n";
+  EXPECT_EQ(failingMinLength(relative, 1.0), 0u);
+  EXPECT_EQ(failingMinLength(relative, 4.0), 9u);
+  for (const double size : {0.5, 1.0, 4.0}) {
+    EXPECT_EQ(failingMinLength("min_length 3 2.5 2 1.5 0.5\n", size), 9u) << size;
+    EXPECT_EQ(failingMinLength("min_length 3 2.5 2 0.8 0.5\n", size), 0u) << size;
+  }
+  QualitySettings settings;
+  parseCriteria("min_length 1 1 1 0.5 0.1\n", "test.txt", settings);
+  settings.targetSize = 10.0;  // would fail every element were the lengths relative
+  const QualityReport report = assessQuality(grid, settings);
+  EXPECT_EQ(report.failingAny, 0u);
+  EXPECT_EQ(report.meanQualityIndex, 0.0);  // every length at its ideal
+  // The distance limit in model units too.
+  parseCriteria("distance 0 0.1 0.2 0.4 1\n", "test.txt", settings);
+  const QuadMesh original = test::unitGrid(3);
+  EXPECT_DOUBLE_EQ(assessQuality(grid, settings, &original).distanceLimit, 0.4);
 }
 
 TEST(QualityIndex, PenaltiesFollowTheThresholds) {

@@ -11,8 +11,11 @@
 //       taper, min_length, degenerate_corner, folded, distance). FAIL is the limit an element
 //       fails beyond; the five values run from best to worst (growing for a maximum such as
 //       warping, falling for a minimum such as min_length). WEIGHT defaults to 1. Lengths
-//       (min_length, distance) are relative to the target size and written with a trailing 'h'
-//       (0.5h); folded's FAIL is 0 (no folded element passes).
+//       (min_length, distance) are either relative to the target size, written with a trailing
+//       'h' (0.5h: half the size; min_length then scales down in channels narrower than the
+//       size, quality.h), or in model units (2.5: the same limit for every part and element);
+//       the five values of a line are all one or all the other. folded's FAIL is 0 (no folded
+//       element passes).
 //   tria_share SHARE        the largest share of triangles (0..1, or a percentage as 5%)
 //   failing_share SHARE     the largest share of elements failing a criterion
 //   jacobian_at corners|gauss_points   where the Jacobian ratio is evaluated
@@ -29,7 +32,8 @@ namespace voxremesh {
 /// Reads a criteria file (see the top of the file) into `settings`: what the file names replaces
 /// the settings' values, the rest stays.
 /// Throws InputError naming the file and line for a malformed line, an unknown or repeated entry,
-/// values out of order, a length without 'h', or settings checkQualitySettings refuses (no line:
+/// values out of order, a line mixing relative and absolute lengths, 'h' on a value that is no
+/// length, or settings checkQualitySettings refuses (no line:
 /// 0), and when the file cannot be read; `settings` is unchanged then.
 void readCriteriaFile(const std::string& path, QualitySettings& settings);
 

@@ -38,9 +38,10 @@
 //   taper = 1 - min A_i / (A / 2). 0 for a parallelogram, 1 when a corner triangle has no area.
 // - Minimum element length, the LS-DYNA shell characteristic length of the explicit time step:
 //   (1 + b) A / (longest edge), b = 0 for quads (A the quad area above), b = 1 for triangles.
-//   Its limit is minLengthFactor x the size the element is judged against: the target size, or,
-//   when channel curves are given (assessQuality), the width of the channel the element lies in
-//   where that is narrower. A channel is bounded by the curves the mesh must keep (boundary
+//   Its limit is minLengthFactor itself when the settings give it in model units
+//   (minLengthAbsolute), else minLengthFactor x the size the element is judged against: the target
+//   size, or, when channel curves are given (assessQuality), the width of the channel the element
+//   lies in where that is narrower. A channel is bounded by the curves the mesh must keep (boundary
 //   loops, feature lines, junction curves: channelCurves); its width at an element is the
 //   diameter of the largest ball that contains the element's centroid and that no curve crosses.
 //   A strip 1 mm wide meshed at 5 mm cannot have elements longer than 1 mm across it, so its
@@ -169,11 +170,18 @@ struct QualitySettings {
   double minScaledJacobian = 0.3;
   double maxTaper = 0.6;         ///< taper of quads
   double minLengthFactor = 0.5;  ///< minimum element length limit = this x targetSize
+  /// minLengthFactor and min_length's index thresholds are lengths in model units, not multiples
+  /// of the size an element is judged against: the limit is the same for every element, narrow
+  /// channels included (a criteria file's length without 'h').
+  bool minLengthAbsolute = false;
   /// The target element size the length and distance limits scale with, in model units; 0 (the
   /// default) means the median edge length of the assessed mesh.
   double targetSize = 0.0;
   double maxTriangleShare = 0.05;   ///< triangles / all elements
   double maxDistanceFactor = 0.25;  ///< two-sided max distance limit = this x distanceSize
+  /// maxDistanceFactor and distance's index thresholds are lengths in model units, not multiples
+  /// of distanceSize (a criteria file's length without 'h').
+  bool distanceAbsolute = false;
   /// The size the distance limit scales with; 0 (the default) means targetSize. A part remeshed
   /// at a finer voxel than asked keeps the distance limit of the size asked.
   double distanceSize = 0.0;
@@ -235,6 +243,11 @@ bool isMaximumCriterion(Criterion criterion);
 /// The field of QualitySettings that holds a criterion's limit (a factor of the judged size for
 /// the minimum length, of the distance size for the distance); null for folded (none allowed).
 double QualitySettings::*limitField(Criterion criterion);
+
+/// What the settings of a length criterion (min_length, distance: limit and index thresholds) are
+/// multiples of, for an element judged against `size`: `size`, or 1 where the settings give that
+/// criterion's lengths in model units (minLengthAbsolute, distanceAbsolute). 1 for other criteria.
+double lengthScale(const QualitySettings& settings, Criterion criterion, double size);
 
 /// The element criteria (the first kElementCriterionCount) an element with these metrics fails
 /// under the settings: bit c set when Criterion c applies to the element (quads: all but the
@@ -332,7 +345,7 @@ struct QualityReport {
   std::vector<double> qualityIndex;            ///< per face (see "Quality index")
   double meanQualityIndex = 0.0;               ///< over the faces (0 without faces)
   std::optional<SurfaceDistance> distance;     ///< when an original was given
-  double distanceLimit = 0.0;                  ///< maxDistanceFactor x targetSize
+  double distanceLimit = 0.0;  ///< maxDistanceFactor x the distance size (or in model units)
   /// Per face: the size its minimum length is judged against, targetSize or the width of the
   /// narrow channel it lies in (when channel curves were given).
   std::vector<double> judgedSize;

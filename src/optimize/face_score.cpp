@@ -32,6 +32,10 @@ double softWarping(const QualitySettings& s) {
 double softSkew(const QualitySettings& s) {
   return 0.8 * s.maxSkewDeg;
 }
+double softMinLength(const QualitySettings& s) {
+  return s.minLengthAbsolute ? s.minLengthFactor + 0.15 * s.targetSize
+                             : (s.minLengthFactor + 0.15) * s.targetSize;
+}
 
 /// The windows of faceScore's metrics for triangles and quads under `s`, kept per thread for the
 /// settings they were last made for (making them costs more than scoring a face).
@@ -61,7 +65,7 @@ double facePenalty(const ElementQuality& q, int corners, const QualitySettings& 
   double p = beyondMax(q.aspectRatio, 0.8 * s.maxAspectRatio, 1.0) +
              beyondMax(q.skewDeg, softSkew(s), 10.0) +
              beyondMin(q.scaledJacobian, s.minScaledJacobian + 0.15, 0.1) +
-             beyondMin(q.minLength, (s.minLengthFactor + 0.15) * s.targetSize, 0.1 * s.targetSize);
+             beyondMin(q.minLength, softMinLength(s), 0.1 * s.targetSize);
   if (corners == 4) {
     p += beyondMax(q.warpingDeg, softWarping(s), 5.0) +
          beyondMin(q.minAngleDeg, softMinAngle(s, 4), 10.0) +
@@ -77,7 +81,8 @@ double facePenalty(const ElementQuality& q, int corners, const QualitySettings& 
 
 Score scoreOfQuality(const ElementQuality& q, int corners, const QualitySettings& s) {
   Score score;
-  score.failures = q.minLength >= kDegenerateLengthFraction * s.minLengthFactor * s.targetSize
+  score.failures = q.minLength >= kDegenerateLengthFraction * s.minLengthFactor *
+                                      lengthScale(s, Criterion::MinLength, s.targetSize)
                        ? __builtin_popcount(elementFailures(q, corners, s))
                        : kCriterionCount;
   score.penalty = facePenalty(q, corners, s);

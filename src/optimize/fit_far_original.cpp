@@ -252,7 +252,8 @@ std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& origina
   checkQualitySettings(settings);
   opt::checkMesh(mesh);
   if (mesh.faces.empty()) return 0;
-  const double limit = settings.maxDistanceFactor * settings.targetSize;
+  const double limit =
+      settings.maxDistanceFactor * lengthScale(settings, Criterion::Distance, settings.targetSize);
   std::size_t pulled = 0;
   for (const double share : {kFarShare, kNearShare})
     pulled += pullTowardsFarSamples(mesh, original, settings, maxPasses, share * limit);

@@ -445,8 +445,10 @@ std::optional<Trial> bestTrialAt(const QuadMesh& mesh, const opt::Topology& t, c
   std::vector<Face> present;
   for (const std::uint32_t g : n.faces) present.push_back(mesh.faces[g]);
   const double limitShare = (c.failures & degenerate) != 0 ? 1.0 : 0.5;
-  const double allowed = std::max(opt::chordError(mesh, present, context.original),
-                                  limitShare * settings.maxDistanceFactor * settings.targetSize);
+  const double allowed =
+      std::max(opt::chordError(mesh, present, context.original),
+               limitShare * settings.maxDistanceFactor *
+                   lengthScale(settings, Criterion::Distance, settings.targetSize));
   // Nor may a try fold more faces than the neighbourhood had folded (a flipped face can pass
   // every criterion of its own); those are counted only when a try has a fold.
   std::optional<std::size_t> foldsBefore;

@@ -278,9 +278,9 @@ bool untangleRegion(QuadMesh& mesh, const opt::Topology& t, const ReferenceSurfa
     std::array<std::array<double, 3>, 4> p{};
     for (int c = 0; c < cornerCount(face); ++c)
       p[std::size_t(c)] = mesh.points[face[std::size_t(c)]];
-    good =
-        good && elementQuality(p, cornerCount(face)).minLength >=
-                    opt::kDegenerateLengthFraction * settings.minLengthFactor * settings.targetSize;
+    good = good && elementQuality(p, cornerCount(face)).minLength >=
+                       opt::kDegenerateLengthFraction * settings.minLengthFactor *
+                           lengthScale(settings, Criterion::MinLength, settings.targetSize);
   }
   if (!good)
     for (const auto& [v, position] : before) mesh.points[v] = position;
@@ -336,8 +336,10 @@ std::size_t refillFoldedRegions(QuadMesh& mesh, const ReferenceSurface& original
     // were: its own faces unfolded where they can be; else it is filled anew.
     std::vector<Face> faces;
     for (const std::uint32_t f : region) faces.push_back(mesh.faces[f]);
-    const double allowed = std::max(settings.maxDistanceFactor * settings.targetSize,
-                                    opt::chordError(mesh, faces, original));
+    const double allowed =
+        std::max(settings.maxDistanceFactor *
+                     lengthScale(settings, Criterion::Distance, settings.targetSize),
+                 opt::chordError(mesh, faces, original));
     const std::vector<std::uint8_t> foldedNow = foldedFaces(mesh);
     std::vector<CornerIndex> grownLoop = loop;
     const std::vector<std::uint32_t> grown =
@@ -367,9 +369,9 @@ std::size_t refillFoldedRegions(QuadMesh& mesh, const ReferenceSurface& original
     for (const Face& triangle : triangles) {
       std::array<std::array<double, 3>, 4> p{};
       for (int c = 0; c < 3; ++c) p[std::size_t(c)] = mesh.points[triangle[std::size_t(c)]];
-      sliver = sliver ||
-               !(elementQuality(p, 3).minLength >=
-                 opt::kDegenerateLengthFraction * settings.minLengthFactor * settings.targetSize);
+      sliver = sliver || !(elementQuality(p, 3).minLength >=
+                           opt::kDegenerateLengthFraction * settings.minLengthFactor *
+                               lengthScale(settings, Criterion::MinLength, settings.targetSize));
     }
     if (sliver || opt::chordError(mesh, triangles, original) > allowed) {
       mesh.points.resize(pointsOfRegion);

@@ -91,8 +91,10 @@ QuadMesh meshFromBoundary(const Sheet& sheet, const QuadMesh& surface,
   if (optimize && settings.optimize) {
     OptimizeSettings optimizeSettings = settings.optimizeSettings;
     optimizeSettings.quality.targetSize = spacing;
-    // The other criteria, the distance and the edits' scale stay at the spacing.
-    optimizeSettings.quality.minLengthFactor *= boundaryMeshSize(mesh, spacing) / spacing;
+    // The other criteria, the distance and the edits' scale stay at the spacing; a minimum
+    // length in model units stays as it is.
+    if (!optimizeSettings.quality.minLengthAbsolute)
+      optimizeSettings.quality.minLengthFactor *= boundaryMeshSize(mesh, spacing) / spacing;
     if (optimizeSettings.splitFailingShare > 0.0) optimizeSettings.splitFailingShare = 1.0;
     optimizeQuadMesh(mesh, original, optimizeSettings);
   }

@@ -23,9 +23,12 @@ std::optional<Criterion> criterionNamed(std::string_view name) {
   return std::nullopt;
 }
 
-/// True for the criteria whose values are lengths relative to the target size.
-bool isLength(Criterion c) {
-  return c == Criterion::MinLength || c == Criterion::Distance;
+/// For the criteria whose values are lengths, the setting that says they are in model units
+/// rather than multiples of the size ('h'); null for the others.
+bool QualitySettings::*absoluteFlag(Criterion c) {
+  if (c == Criterion::MinLength) return &QualitySettings::minLengthAbsolute;
+  if (c == Criterion::Distance) return &QualitySettings::distanceAbsolute;
+  return nullptr;
 }
 
 /// The words of a line without its comment.
@@ -96,12 +99,17 @@ class CriteriaParser {
     if (w.size() != 6 && w.size() != 7)
       fail(name + " takes five values (ideal good warn fail worst) and an optional weight");
     std::array<double, 5> v{};
+    const auto absolute = absoluteFlag(c);
+    const bool relativeLine = w[1].back() == 'h';  // words are never empty
     for (std::size_t k = 0; k < 5; ++k) {
       std::string_view word = w[k + 1];
-      const bool relative = !word.empty() && word.back() == 'h';
-      if (relative != isLength(c))
-        fail(isLength(c) ? name + " is a length: give it relative to the target size, as 0.5h"
-                         : name + " is no length: '" + std::string(word) + "' takes no 'h'");
+      const bool relative = word.back() == 'h';
+      if (relative && !absolute)
+        fail(name + " is no length: '" + std::string(word) + "' takes no 'h'");
+      if (relative != relativeLine)
+        fail(name +
+             ": give its five lengths all relative to the target size (as 0.5h) or all "
+             "in model units (as 2.5)");
       v[k] = number(relative ? word.substr(0, word.size() - 1) : word);
     }
     const double sign = isMaximumCriterion(c) ? 1.0 : -1.0;
@@ -114,6 +122,7 @@ class CriteriaParser {
     t = {v[0], v[1], v[2], v[4], w.size() == 7 ? number(w[6]) : 1.0};
     if (!(t.weight >= 0.0)) fail(name + ": a weight is 0 or more");
     if (const auto field = limitField(c)) settings_.*field = v[3];
+    if (absolute) settings_.*absolute = !relativeLine;
   }
 
   std::string source_;
@@ -164,7 +173,8 @@ std::string formatCriteria(const QualitySettings& settings) {
     std::string text = criterionName(criterion);
     text.resize(18, ' ');
     for (const double value : values) {
-      std::string word = numberText(value) + (isLength(criterion) ? "h" : "");
+      const auto absolute = absoluteFlag(criterion);
+      std::string word = numberText(value) + (absolute && !(settings.*absolute) ? "h" : "");
       text += std::string(word.size() < 10 ? 10 - word.size() : 1, ' ') + word;
     }
     std::snprintf(line, sizeof line, "%s%10s\n", text.c_str(), numberText(t.weight).c_str());

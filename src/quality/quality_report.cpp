@@ -63,7 +63,7 @@ double ElementQuality::*valueOf(Criterion c, const QualitySettings& s) {
 
 double limitOf(Criterion c, const QualitySettings& s) {
   const double limit = s.*(kRules[static_cast<int>(c)].limit);
-  return c == Criterion::MinLength ? limit * s.targetSize : limit;
+  return c == Criterion::MinLength ? limit * lengthScale(s, c, s.targetSize) : limit;
 }
 
 /// The value fails the limit (NaN always fails).
@@ -83,6 +83,12 @@ double QualitySettings::*limitField(Criterion c) {
   if (c == Criterion::Folded) return nullptr;
   if (c == Criterion::Distance) return &QualitySettings::maxDistanceFactor;
   return kRules[static_cast<int>(c)].limit;
+}
+
+double lengthScale(const QualitySettings& s, Criterion c, double size) {
+  if (c == Criterion::MinLength) return s.minLengthAbsolute ? 1.0 : size;
+  if (c == Criterion::Distance) return s.distanceAbsolute ? 1.0 : size;
+  return 1.0;
 }
 
 const char* criterionName(Criterion c) {
@@ -169,7 +175,7 @@ std::vector<double> judgedSizes(const QuadMesh& mesh, const std::vector<ElementQ
                                 const QualitySettings& s, const std::vector<MeshCurve>* channels) {
   using namespace geom;  // NOLINT: the vector operators
   std::vector<double> sizes(mesh.faces.size(), s.targetSize);
-  if (!channels || channels->empty()) return sizes;
+  if (!channels || channels->empty() || s.minLengthAbsolute) return sizes;
   std::vector<std::size_t> shortFaces;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
     if (fails(values[f].minLength, s.minLengthFactor * s.targetSize, false))
@@ -279,11 +285,11 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
         first = false;
       }
       const double limit = criterion == Criterion::MinLength
-                               ? s.minLengthFactor * report.judgedSize[f]
+                               ? s.minLengthFactor * lengthScale(s, criterion, report.judgedSize[f])
                                : summary.limit;
       if (fillsCorner[f] && forcedByCorner(criterion)) continue;  // excused
       const double scale = criterion == Criterion::MinLength && report.judgedSize[f] > 0.0
-                               ? report.judgedSize[f]
+                               ? lengthScale(s, criterion, report.judgedSize[f])
                                : 1.0;
       addPenalty(report.qualityIndex[f], value / scale, s.index[std::size_t(c)], limit / scale,
                  r.isMaximum);
@@ -302,7 +308,8 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
                    std::vector<double>(folded.begin(), folded.end()), folded);
   // The distance is judged (and sampled, at half the size) against the size it scales with.
   const double distanceSize = s.distanceSize > 0.0 ? s.distanceSize : s.targetSize;
-  report.distanceLimit = s.maxDistanceFactor * distanceSize;
+  const double distanceScale = lengthScale(s, Criterion::Distance, distanceSize);
+  report.distanceLimit = s.maxDistanceFactor * distanceScale;
   std::vector<double> faceDistance(report.elements, 0.0);
   std::vector<std::uint8_t> far(report.elements, 0);
   if (original) {
@@ -316,7 +323,7 @@ QualityReport assessQuality(const QuadMesh& mesh, const QualitySettings& setting
     addPenalty(report.qualityIndex[f], folded[f], s.index[std::size_t(Criterion::Folded)], 0.0,
                true);
     if (original)
-      addPenalty(report.qualityIndex[f], faceDistance[f] / distanceSize,
+      addPenalty(report.qualityIndex[f], faceDistance[f] / distanceScale,
                  s.index[std::size_t(Criterion::Distance)], s.maxDistanceFactor, true);
   }
   for (std::size_t f = 0; f < report.elements; ++f) {

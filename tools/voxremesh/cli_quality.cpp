@@ -127,6 +127,9 @@ int runQuality(const std::vector<std::string>& args) {
     for (const LimitOption& option : kLimits)
       if (const auto text = parsed.value(option.name))
         settings.*(option.field) = parseNumber(option.name, *text);
+    // The length options are multiples of the size, whatever a criteria file said.
+    if (parsed.value("--min-length")) settings.minLengthAbsolute = false;
+    if (parsed.value("--distance")) settings.distanceAbsolute = false;
     if (parsed.has("--jacobian-at-gauss-points")) settings.jacobianAtGaussPoints = true;
     checkQualitySettings(settings);
     if (const auto format = parsed.value("--format")) readOptions.format = formatFromName(*format);
