@@ -112,7 +112,9 @@ ReferenceSurface::ReferenceSurface(const QuadMesh& mesh) : points_(mesh.points) 
   leafTris_.resize(tris_.size());
   leafSlot_.resize(tris_.size());
   leafNode_.resize(tris_.size());
-  nodes_.reserve(2 * tris_.size() / kLeafSize + 2);
+  // A leaf holds 2 .. kLeafSize triangles (one when there is only one): at most one node per
+  // triangle, and one more.
+  nodes_.reserve(tris_.size() + 1);
   nodes_.emplace_back();
   build(0, static_cast<std::uint32_t>(order_.size()), centroids);
   parent_.assign(nodes_.size(), 0);
