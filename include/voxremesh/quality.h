@@ -244,6 +244,10 @@ bool isMaximumCriterion(Criterion criterion);
 /// the minimum length, of the distance size for the distance); null for folded (none allowed).
 double QualitySettings::*limitField(Criterion criterion);
 
+/// For the criteria whose settings are lengths (min_length, distance), the flag that says they are
+/// in model units (minLengthAbsolute, distanceAbsolute); null for the others.
+bool QualitySettings::*absoluteLengthField(Criterion criterion);
+
 /// What the settings of a length criterion (min_length, distance: limit and index thresholds) are
 /// multiples of, for an element judged against `size`: `size`, or 1 where the settings give that
 /// criterion's lengths in model units (minLengthAbsolute, distanceAbsolute). 1 for other criteria.

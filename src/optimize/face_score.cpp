@@ -81,8 +81,7 @@ double facePenalty(const ElementQuality& q, int corners, const QualitySettings& 
 
 Score scoreOfQuality(const ElementQuality& q, int corners, const QualitySettings& s) {
   Score score;
-  score.failures = q.minLength >= kDegenerateLengthFraction * s.minLengthFactor *
-                                      lengthScale(s, Criterion::MinLength, s.targetSize)
+  score.failures = q.minLength >= degenerateLength(s)
                        ? __builtin_popcount(elementFailures(q, corners, s))
                        : kCriterionCount;
   score.penalty = facePenalty(q, corners, s);

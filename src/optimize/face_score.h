@@ -39,6 +39,13 @@ double facePenalty(const ElementQuality& q, int corners, const QualitySettings& 
 /// step would be a tenth of the allowed one, worse than any mild failure elsewhere.
 inline constexpr double kDegenerateLengthFraction = 0.1;
 
+/// The minimum element length under which a face is degenerate (kDegenerateLengthFraction of the
+/// minimum length limit at targetSize).
+inline double degenerateLength(const QualitySettings& s) {
+  return kDegenerateLengthFraction * s.minLengthFactor *
+         lengthScale(s, Criterion::MinLength, s.targetSize);
+}
+
 /// The score of a face with the given metrics: the number of criteria it fails (a degenerate face
 /// counts as failing every criterion, kCriterionCount, so that no step trades mild failures
 /// round it for a sliver) and facePenalty.

@@ -63,7 +63,7 @@ struct Trial {
   opt::Topology topology;             ///< of `mesh`
   std::vector<CornerIndex> searched;  ///< local indexes of the points searched, ascending
   opt::SearchRecord searches;         ///< per point, the searches so far (SearchRecord)
-  std::uint32_t stamp = 0;            ///< raised before each search
+  std::uint32_t stamp = 0;            ///< raised as each search is noted
   bool converged = false;             ///< a whole sweep moved no point
   opt::Score score;
   double chord = 0.0;     ///< chordError of its faces

@@ -278,9 +278,8 @@ bool untangleRegion(QuadMesh& mesh, const opt::Topology& t, const ReferenceSurfa
     std::array<std::array<double, 3>, 4> p{};
     for (int c = 0; c < cornerCount(face); ++c)
       p[std::size_t(c)] = mesh.points[face[std::size_t(c)]];
-    good = good && elementQuality(p, cornerCount(face)).minLength >=
-                       opt::kDegenerateLengthFraction * settings.minLengthFactor *
-                           lengthScale(settings, Criterion::MinLength, settings.targetSize);
+    good =
+        good && elementQuality(p, cornerCount(face)).minLength >= opt::degenerateLength(settings);
   }
   if (!good)
     for (const auto& [v, position] : before) mesh.points[v] = position;
@@ -369,9 +368,7 @@ std::size_t refillFoldedRegions(QuadMesh& mesh, const ReferenceSurface& original
     for (const Face& triangle : triangles) {
       std::array<std::array<double, 3>, 4> p{};
       for (int c = 0; c < 3; ++c) p[std::size_t(c)] = mesh.points[triangle[std::size_t(c)]];
-      sliver = sliver || !(elementQuality(p, 3).minLength >=
-                           opt::kDegenerateLengthFraction * settings.minLengthFactor *
-                               lengthScale(settings, Criterion::MinLength, settings.targetSize));
+      sliver = sliver || !(elementQuality(p, 3).minLength >= opt::degenerateLength(settings));
     }
     if (sliver || opt::chordError(mesh, triangles, original) > allowed) {
       mesh.points.resize(pointsOfRegion);

@@ -23,14 +23,6 @@ std::optional<Criterion> criterionNamed(std::string_view name) {
   return std::nullopt;
 }
 
-/// For the criteria whose values are lengths, the setting that says they are in model units
-/// rather than multiples of the size ('h'); null for the others.
-bool QualitySettings::*absoluteFlag(Criterion c) {
-  if (c == Criterion::MinLength) return &QualitySettings::minLengthAbsolute;
-  if (c == Criterion::Distance) return &QualitySettings::distanceAbsolute;
-  return nullptr;
-}
-
 /// The words of a line without its comment.
 std::vector<std::string_view> words(std::string_view line) {
   line = line.substr(0, line.find('#'));
@@ -99,7 +91,7 @@ class CriteriaParser {
     if (w.size() != 6 && w.size() != 7)
       fail(name + " takes five values (ideal good warn fail worst) and an optional weight");
     std::array<double, 5> v{};
-    const auto absolute = absoluteFlag(c);
+    const auto absolute = absoluteLengthField(c);
     const bool relativeLine = w[1].back() == 'h';  // words are never empty
     for (std::size_t k = 0; k < 5; ++k) {
       std::string_view word = w[k + 1];
@@ -173,7 +165,7 @@ std::string formatCriteria(const QualitySettings& settings) {
     std::string text = criterionName(criterion);
     text.resize(18, ' ');
     for (const double value : values) {
-      const auto absolute = absoluteFlag(criterion);
+      const auto absolute = absoluteLengthField(criterion);
       std::string word = numberText(value) + (absolute && !(settings.*absolute) ? "h" : "");
       text += std::string(word.size() < 10 ? 10 - word.size() : 1, ' ') + word;
     }

@@ -85,10 +85,15 @@ double QualitySettings::*limitField(Criterion c) {
   return kRules[static_cast<int>(c)].limit;
 }
 
+bool QualitySettings::*absoluteLengthField(Criterion c) {
+  if (c == Criterion::MinLength) return &QualitySettings::minLengthAbsolute;
+  if (c == Criterion::Distance) return &QualitySettings::distanceAbsolute;
+  return nullptr;
+}
+
 double lengthScale(const QualitySettings& s, Criterion c, double size) {
-  if (c == Criterion::MinLength) return s.minLengthAbsolute ? 1.0 : size;
-  if (c == Criterion::Distance) return s.distanceAbsolute ? 1.0 : size;
-  return 1.0;
+  const auto absolute = absoluteLengthField(c);
+  return absolute && !(s.*absolute) ? size : 1.0;
 }
 
 const char* criterionName(Criterion c) {
