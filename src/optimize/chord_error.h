@@ -16,4 +16,24 @@ namespace voxremesh::opt {
 double chordError(const QuadMesh& mesh, const std::vector<std::array<CornerIndex, 4>>& faces,
                   const ReferenceSurface& original);
 
+/// chordError of the faces round one point as only that point moves: the middles of the faces'
+/// edges that do not touch it are measured once, at construction; each call measures the rest
+/// (the faces' centres and the middles of the edges at the point, each edge once). The same
+/// value as chordError of the faces with the mesh as it is at the call.
+class ChordAroundPoint {
+ public:
+  /// Preconditions: as chordError's; `faces` are faces of `mesh` round point v; `original`
+  /// outlives this object.
+  ChordAroundPoint(const QuadMesh& mesh, const std::vector<std::array<CornerIndex, 4>>& faces,
+                   CornerIndex v, const ReferenceSurface& original);
+  /// chordError(mesh, faces, original), for `mesh` as at construction but for v's position.
+  double operator()(const QuadMesh& mesh) const;
+
+ private:
+  const std::vector<std::array<CornerIndex, 4>>& faces_;
+  const ReferenceSurface& original_;
+  std::vector<std::array<CornerIndex, 2>> edgesAtPoint_;  ///< each edge at v once
+  double fixedLargest_ = 0.0;  ///< over the middles of the edges away from v
+};
+
 }  // namespace voxremesh::opt

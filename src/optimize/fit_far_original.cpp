@@ -106,7 +106,8 @@ bool pullCorner(QuadMesh& mesh, const opt::Topology& t, CornerIndex v, const Pas
   std::stable_sort(near.begin(), near.end(),
                    [](const NearSample& a, const NearSample& b) { return a.before > b.before; });
   const int failuresBefore = opt::scoreAround(mesh, t, v, pass.settings).failures;
-  const double chordAllowed = std::max(opt::chordError(mesh, around, pass.original), far);
+  const opt::ChordAroundPoint chordError(mesh, around, v, pass.original);
+  const double chordAllowed = std::max(chordError(mesh), far);
   const Vec3 start = mesh.points[v];
   double best = 0.0;
   for (const NearSample& sample : near)
@@ -118,10 +119,10 @@ bool pullCorner(QuadMesh& mesh, const opt::Topology& t, CornerIndex v, const Pas
     return hit.point;
   };
   const auto accept = [&](const Vec3& at) {
-    if (opt::scoreAround(mesh, t, v, pass.settings).failures > failuresBefore) return false;
     const double excess = excessNear(mesh, around, near, distance(at, start), far);
     if (!(excess < best * (1.0 - 1e-9))) return false;
-    if (opt::chordError(mesh, around, pass.original) > chordAllowed) return false;
+    if (opt::scoreAround(mesh, t, v, pass.settings).failures > failuresBefore) return false;
+    if (chordError(mesh) > chordAllowed) return false;
     best = excess;
     return true;
   };
