@@ -41,23 +41,29 @@ std::vector<Face> facesAround(const QuadMesh& mesh, const opt::Topology& t, Corn
 }
 
 /// The distance from p to the nearest of `faces` of `mesh`, each cut into triangles as
-/// ReferenceSurface cuts it (p0-p1-p2, and p0-p2-p3 for a quad).
-double distanceToFaces(const QuadMesh& mesh, const std::vector<Face>& faces, const Vec3& p) {
+/// ReferenceSurface cuts it (p0-p1-p2, and p0-p2-p3 for a quad), faces[first] tried first; or,
+/// as soon as a triangle within `enough` of p is found, that triangle's distance.
+double distanceToFaces(const QuadMesh& mesh, const std::vector<Face>& faces, std::size_t first,
+                       const Vec3& p, double enough) {
   double nearest = std::numeric_limits<double>::infinity();
-  for (const Face& face : faces)
-    for (int k = 2; k < cornerCount(face); ++k) {
+  for (std::size_t i = 0; i < faces.size() && nearest > enough; ++i) {
+    const Face& face = faces[i == 0 ? first : i == first ? 0 : i];
+    for (int k = 2; k < cornerCount(face) && nearest > enough; ++k) {
       const Vec3& a = mesh.points[face[0]];
       const Vec3 q = closestPointOnTriangle(p, a, mesh.points[face[std::size_t(k - 1)]],
                                             mesh.points[face[std::size_t(k)]]);
       nearest = std::min(nearest, distance(p, q));
     }
+  }
   return nearest;
 }
 
-/// A sample of the original near a point's faces, with its distance to them before any move.
+/// A sample of the original near a point's faces, with its distance to them before any move and
+/// the one of them it was nearest to (an index into them).
 struct NearSample {
   Vec3 point;
   double before = 0.0;
+  std::size_t nearestFace = 0;
 };
 
 /// How far the samples `near` (sorted by `before`, farthest first) lie beyond `far` from the faces
@@ -70,12 +76,26 @@ double excessNear(const QuadMesh& mesh, const std::vector<Face>& faces,
   double excess = 0.0;
   for (const NearSample& s : near) {
     if (s.before + moved <= far) break;
-    const double d = distanceToFaces(mesh, faces, s.point);
+    // Within `far` a sample adds nothing, whatever its distance: the search stops there.
+    const double d = distanceToFaces(mesh, faces, s.nearestFace, s.point, far);
     if (d > std::max(s.before, far)) return std::numeric_limits<double>::infinity();
     if (d > far) excess += (d - far) * (d - far);
   }
   return excess;
 }
+
+/// The samples each face of the mesh is closest to, ascending, all in one array: face f's are
+/// samples[start[f]] .. samples[start[f + 1]].
+struct SamplesByFace {
+  std::vector<std::uint32_t> start, samples;
+  SamplesByFace(const std::vector<SurfaceHit>& hits, std::size_t faces) : start(faces + 1, 0) {
+    for (const SurfaceHit& hit : hits) ++start[hit.face + 1];
+    for (std::size_t f = 0; f < faces; ++f) start[f + 1] += start[f];
+    samples.resize(hits.size());
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    for (std::uint32_t i = 0; i < hits.size(); ++i) samples[next[hits[i].face]++] = i;
+  }
+};
 
 /// What the pulls of one pass read: the original's samples, the closest point of the mesh to each
 /// (as the pass began), the samples each face is closest to, the criteria and the distance beyond
@@ -85,7 +105,7 @@ struct PassState {
   const QualitySettings& settings;
   const std::vector<Vec3>& samples;
   const std::vector<SurfaceHit>& hits;
-  const std::vector<std::vector<std::uint32_t>>& nearestTo;
+  const SamplesByFace& nearestTo;
   double far = 0.0;
 };
 
@@ -101,8 +121,10 @@ bool pullCorner(QuadMesh& mesh, const opt::Topology& t, CornerIndex v, const Pas
   const std::vector<Face> around = facesAround(mesh, t, v);
   std::vector<NearSample> near;
   for (const std::uint32_t* g = t.facesBegin(v); g != t.facesEnd(v); ++g)
-    for (const std::uint32_t s : pass.nearestTo[*g])
-      near.push_back({pass.samples[s], pass.hits[s].distance});
+    for (std::uint32_t k = pass.nearestTo.start[*g]; k < pass.nearestTo.start[*g + 1]; ++k) {
+      const std::uint32_t s = pass.nearestTo.samples[k];
+      near.push_back({pass.samples[s], pass.hits[s].distance, std::size_t(g - t.facesBegin(v))});
+    }
   std::stable_sort(near.begin(), near.end(),
                    [](const NearSample& a, const NearSample& b) { return a.before > b.before; });
   const int failuresBefore = opt::scoreAround(mesh, t, v, pass.settings).failures;
@@ -135,41 +157,53 @@ struct PullCandidate {
   std::vector<CornerIndex> corners;
 };
 
+/// What the passes of both shares read: the original's samples, the mesh's topology (the pulls
+/// move points only), and the closest point of the mesh to each sample, current while no point
+/// has moved since it was found.
+struct FitState {
+  std::vector<Vec3> samples;
+  opt::Topology topology;
+  std::vector<SurfaceHit> hits;
+  bool hitsCurrent = false;
+};
+
 /// Up to maxPasses passes of the pulls towards the samples of the original farther than `far`
 /// from the mesh (see fitFarOriginalPoints); returns the number of points pulled.
 std::size_t pullTowardsFarSamples(QuadMesh& mesh, const ReferenceSurface& original,
-                                  const QualitySettings& settings, int maxPasses, double far) {
-  const std::vector<Vec3> samples = original.usedPoints();
-  const opt::Topology t = opt::buildTopology(mesh);
+                                  const QualitySettings& settings, int maxPasses, double far,
+                                  FitState& fit) {
+  const std::vector<Vec3>& samples = fit.samples;
+  const opt::Topology& t = fit.topology;
+  std::vector<SurfaceHit>& hits = fit.hits;
   std::size_t pulled = 0;
-  std::vector<SurfaceHit> hits;
   // The pass in which a face's corners were last searched in vain, and in which a point was last
   // among the corners of a moved point's faces: a face searched in vain is not searched again
   // while none of its corners has changed since.
   std::vector<int> vainPass(mesh.faces.size(), -1), changedPass(mesh.points.size(), -1);
   for (int pass = 0; pass < maxPasses; ++pass) {
-    // The closest point of the mesh to each sample, with a hint (the same answers, found
-    // faster): in the first pass the answer for the sample before (a deck's nodes come in runs
-    // of near ones), then the previous pass's answer.
-    const ReferenceSurface current(mesh);
-    hits.resize(samples.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 256),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        std::uint32_t hint = kNoCorner;
-                        for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                          hits[i] =
-                              current.closestPoint(samples[i], pass == 0 ? hint : hits[i].face);
-                          hint = hits[i].face;
-                        }
-                      });
+    // The closest point of the mesh to each sample, unless no point has moved since they were
+    // found, with a hint (the same answers, found faster): the first time the answer for the
+    // sample before (a deck's nodes come in runs of near ones), then the previous answer.
+    if (!fit.hitsCurrent) {
+      const ReferenceSurface current(mesh);
+      const bool first = hits.empty();
+      hits.resize(samples.size());
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 256),
+                        [&](const tbb::blocked_range<std::size_t>& r) {
+                          std::uint32_t hint = kNoCorner;
+                          for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                            hits[i] = current.closestPoint(samples[i], first ? hint : hits[i].face);
+                            hint = hits[i].face;
+                          }
+                        });
+      fit.hitsCurrent = true;
+    }
     // The samples each face is closest to (for the check of a pull's faces), and the far ones,
     // farthest first.
-    std::vector<std::vector<std::uint32_t>> nearestTo(mesh.faces.size());
+    const SamplesByFace nearestTo(hits, mesh.faces.size());
     std::vector<std::uint32_t> farSamples;
-    for (std::uint32_t i = 0; i < hits.size(); ++i) {
-      nearestTo[hits[i].face].push_back(i);
+    for (std::uint32_t i = 0; i < hits.size(); ++i)
       if (hits[i].distance > far) farSamples.push_back(i);
-    }
     std::stable_sort(farSamples.begin(), farSamples.end(), [&](std::uint32_t a, std::uint32_t b) {
       return hits[a].distance > hits[b].distance;
     });
@@ -237,6 +271,7 @@ std::size_t pullTowardsFarSamples(QuadMesh& mesh, const ReferenceSurface& origin
         });
     pulled += passPulled;
     if (passPulled == 0) break;
+    fit.hitsCurrent = false;
   }
   return pulled;
 }
@@ -255,9 +290,10 @@ std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& origina
   if (mesh.faces.empty()) return 0;
   const double limit =
       settings.maxDistanceFactor * lengthScale(settings, Criterion::Distance, settings.targetSize);
+  FitState fit{original.usedPoints(), opt::buildTopology(mesh), {}, false};
   std::size_t pulled = 0;
   for (const double share : {kFarShare, kNearShare})
-    pulled += pullTowardsFarSamples(mesh, original, settings, maxPasses, share * limit);
+    pulled += pullTowardsFarSamples(mesh, original, settings, maxPasses, share * limit, fit);
   return pulled;
 }
 
