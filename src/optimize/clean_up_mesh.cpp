@@ -1,6 +1,7 @@
 // cleanUpMesh: zero-area faces and doublets (Free interior points in exactly two faces).
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -87,9 +88,8 @@ std::size_t removeDuplicateFaces(QuadMesh& mesh) {
 
 /// One round of shortest-edge collapses of faces with area at most zeroArea or an edge shorter
 /// than shortEdge; the counts of each kind are added to `result`. Returns the number done.
-std::size_t collapseSmallFaces(QuadMesh& mesh, double zeroArea, double shortEdge,
-                               CleanupResult& result) {
-  const opt::Topology topology = opt::buildTopology(mesh);
+std::size_t collapseSmallFaces(QuadMesh& mesh, const opt::Topology& topology, double zeroArea,
+                               double shortEdge, CleanupResult& result) {
   std::vector<std::uint8_t> locked(mesh.points.size(), 0), deleted(mesh.faces.size(), 0);
   std::size_t done = 0;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
@@ -126,8 +126,7 @@ std::vector<CornerIndex> pathAround(const std::array<CornerIndex, 4>& face, Corn
 }
 
 /// One round of doublet removal; returns the number of points removed.
-std::size_t removeDoublets(QuadMesh& mesh) {
-  const opt::Topology topology = opt::buildTopology(mesh);
+std::size_t removeDoublets(QuadMesh& mesh, const opt::Topology& topology) {
   std::vector<std::uint8_t> locked(mesh.points.size(), 0), deleted(mesh.faces.size(), 0);
   std::size_t done = 0;
   for (CornerIndex v = 0; v < mesh.points.size(); ++v) {
@@ -171,9 +170,8 @@ bool onCurveOf(const QuadMesh& mesh, CornerIndex a, CornerIndex b) {
 /// curve (b a curve point, a and c on its curve or Corners) and an interior angle above
 /// kFoldedCurveAngleDeg at b lies along the curve (a quad like a triangle with b on its side, a
 /// triangle as a sliver); b merges into the nearer of a and c. Returns the number done.
-std::size_t collapseFoldedCurveFaces(QuadMesh& mesh) {
+std::size_t collapseFoldedCurveFaces(QuadMesh& mesh, const opt::Topology& topology) {
   if (mesh.constraints.empty()) return 0;
-  const opt::Topology topology = opt::buildTopology(mesh);
   std::vector<std::uint8_t> locked(mesh.points.size(), 0), deleted(mesh.faces.size(), 0);
   std::size_t done = 0;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
@@ -213,13 +211,27 @@ CleanupResult cleanUpMesh(QuadMesh& mesh, const CleanupSettings& settings) {
   CleanupResult result;
   result.zeroAreaFaces += dropRepeatedCorners(mesh);
   opt::checkMesh(mesh);
+  // Each step reads the topology of the mesh as it finds it: built again only after a step
+  // changed the mesh (a step that does nothing leaves it as it was).
+  std::optional<opt::Topology> topology;
+  const auto current = [&]() -> const opt::Topology& {
+    if (!topology) topology = opt::buildTopology(mesh);
+    return *topology;
+  };
+  const auto changed = [&](std::size_t count) {
+    if (count > 0) topology.reset();
+    return count;
+  };
   for (;;) {
-    const std::size_t duplicates = removeDuplicateFaces(mesh);
+    const std::size_t duplicates = changed(removeDuplicateFaces(mesh));
     result.duplicateFaces += duplicates;
-    const std::size_t zero = collapseSmallFaces(mesh, zeroArea, shortEdge, result);
-    const std::size_t doublets = removeDoublets(mesh);
+    const std::size_t zero =
+        changed(collapseSmallFaces(mesh, current(), zeroArea, shortEdge, result));
+    const std::size_t doublets = changed(removeDoublets(mesh, current()));
     result.valence2Points += doublets;
-    const std::size_t folded = settings.foldedCurves ? collapseFoldedCurveFaces(mesh) : 0;
+    const std::size_t folded = settings.foldedCurves && !mesh.constraints.empty()
+                                   ? changed(collapseFoldedCurveFaces(mesh, current()))
+                                   : 0;
     result.foldedCurveFaces += folded;
     if (duplicates == 0 && zero == 0 && doublets == 0 && folded == 0) break;
   }
