@@ -87,6 +87,30 @@ TEST(ReferenceSurface, MatchesBruteForce) {
   }
 }
 
+TEST(ReferenceSurface, MovedPointsGiveTheAnswersOfASurfaceBuiltOnThem) {
+  QuadMesh mesh = wavyGrid(12);
+  voxremesh::ReferenceSurface moved(mesh);
+  // Every point moves, some far past where the tree was split.
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) {
+    mesh.points[v][2] += 0.4 * std::cos(1.3 * double(v));
+    if (v % 7 == 0) mesh.points[v][0] += 3.0;
+  }
+  moved.movePoints(mesh.points);
+  const voxremesh::ReferenceSurface built(mesh);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> xy(-2.0, 16.0), z(-3.0, 3.0);
+  for (int i = 0; i < 500; ++i) {
+    const Vec q{xy(random), xy(random), z(random)};
+    const voxremesh::SurfaceHit a = moved.closestPoint(q), b = built.closestPoint(q);
+    ASSERT_EQ(a.face, b.face) << "query " << i;
+    EXPECT_EQ(a.point, b.point);
+    EXPECT_EQ(a.distance, b.distance);
+  }
+  EXPECT_THROW(moved.movePoints({{0.0, 0.0, 0.0}}), std::invalid_argument);
+  mesh.points[3][1] = std::nan("");
+  EXPECT_THROW(moved.movePoints(mesh.points), std::invalid_argument);
+}
+
 TEST(Triangle, ClosestPointAgreesWithPlaneProjectionAndEdges) {
   // Random points round random triangles: the closest point's distance is the independent
   // route's, and the point lies on the triangle (in its plane, within its edges' distance).

@@ -37,6 +37,13 @@ class ReferenceSurface {
   /// Throws std::invalid_argument when a face names a missing point or a coordinate is not finite.
   explicit ReferenceSurface(const QuadMesh& mesh);
 
+  /// Takes new positions for the points of the mesh it was built on, the faces unchanged (the
+  /// points' count must match): the hierarchy keeps its tree and its boxes are fitted again, so
+  /// that every query gives the same answer as on a surface built anew on the moved mesh (only
+  /// perhaps more slowly, as the points drift from where the tree was split). Throws
+  /// std::invalid_argument when the point count differs or a coordinate is not finite.
+  void movePoints(const std::vector<std::array<double, 3>>& points);
+
   /// True without triangles.
   bool empty() const { return tris_.empty(); }
   /// The number of triangles.
@@ -73,6 +80,8 @@ class ReferenceSurface {
     std::array<double, 3> lo{}, hi{};
     std::uint32_t triangle = 0;  ///< its index into tris_
   };
+  /// Sets t's corners from points_ (t.triangle's) and its grown box.
+  void fitLeafTriangle(LeafTriangle& t) const;
   std::uint32_t build(std::uint32_t begin, std::uint32_t end,
                       const std::vector<std::array<double, 3>>& centroids);
 

@@ -138,16 +138,8 @@ std::uint32_t ReferenceSurface::build(std::uint32_t begin, std::uint32_t end,
       t.triangle = order_[i];
       leafSlot_[t.triangle] = i;
       leafNode_[t.triangle] = index;
-      Box box;
-      for (int k = 0; k < 3; ++k) {
-        t.corners[static_cast<std::size_t>(k)] =
-            points_[tris_[t.triangle][static_cast<std::size_t>(k)]];
-        box.add(t.corners[static_cast<std::size_t>(k)]);
-      }
-      box = safeBox(box);
-      t.lo = box.lo;
-      t.hi = box.hi;
-      leafBox.add(box);
+      fitLeafTriangle(t);
+      leafBox.add(Box{t.lo, t.hi});
     }
     nodes_[index].lo = leafBox.lo;
     nodes_[index].hi = leafBox.hi;
@@ -176,6 +168,44 @@ std::uint32_t ReferenceSurface::build(std::uint32_t begin, std::uint32_t end,
   nodes_[index].count = 0;
   nodes_[index].right = right;
   return index;
+}
+
+void ReferenceSurface::fitLeafTriangle(LeafTriangle& t) const {
+  Box box;
+  for (std::size_t k = 0; k < 3; ++k) {
+    t.corners[k] = points_[tris_[t.triangle][k]];
+    box.add(t.corners[k]);
+  }
+  box = safeBox(box);
+  t.lo = box.lo;
+  t.hi = box.hi;
+}
+
+void ReferenceSurface::movePoints(const std::vector<std::array<double, 3>>& points) {
+  if (points.size() != points_.size())
+    throw std::invalid_argument("reference surface: " + std::to_string(points.size()) +
+                                " moved points for " + std::to_string(points_.size()));
+  for (const auto& point : points)
+    for (double x : point)
+      if (!std::isfinite(x))
+        throw std::invalid_argument("reference surface: a point has a non-finite coordinate");
+  points_ = points;
+  for (LeafTriangle& t : leafTris_) fitLeafTriangle(t);
+  // Children come after their parent in nodes_: from the last node back, each box is fitted
+  // after those it holds, as build fits them.
+  for (std::size_t n = nodes_.size(); n-- > 0;) {
+    Node& node = nodes_[n];
+    Box box;
+    if (node.count > 0) {
+      for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
+        box.add(Box{leafTris_[i].lo, leafTris_[i].hi});
+    } else {
+      box = Box{nodes_[node.first].lo, nodes_[node.first].hi};
+      box.add(Box{nodes_[node.right].lo, nodes_[node.right].hi});
+    }
+    node.lo = box.lo;
+    node.hi = box.hi;
+  }
 }
 
 SurfaceHit ReferenceSurface::closestPoint(const std::array<double, 3>& p) const {

@@ -158,11 +158,12 @@ struct PullCandidate {
 };
 
 /// What the passes of both shares read: the original's samples, the mesh's topology (the pulls
-/// move points only), and the closest point of the mesh to each sample, current while no point
-/// has moved since it was found.
+/// move points only), the mesh as a surface to query, and the closest point of the mesh to each
+/// sample, current while no point has moved since it was found.
 struct FitState {
   std::vector<Vec3> samples;
   opt::Topology topology;
+  ReferenceSurface surface;
   std::vector<SurfaceHit> hits;
   bool hitsCurrent = false;
 };
@@ -185,8 +186,9 @@ std::size_t pullTowardsFarSamples(QuadMesh& mesh, const ReferenceSurface& origin
     // found, with a hint (the same answers, found faster): the first time the answer for the
     // sample before (a deck's nodes come in runs of near ones), then the previous answer.
     if (!fit.hitsCurrent) {
-      const ReferenceSurface current(mesh);
       const bool first = hits.empty();
+      if (!first) fit.surface.movePoints(mesh.points);
+      const ReferenceSurface& current = fit.surface;
       hits.resize(samples.size());
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 256),
                         [&](const tbb::blocked_range<std::size_t>& r) {
@@ -290,7 +292,7 @@ std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& origina
   if (mesh.faces.empty()) return 0;
   const double limit =
       settings.maxDistanceFactor * lengthScale(settings, Criterion::Distance, settings.targetSize);
-  FitState fit{original.usedPoints(), opt::buildTopology(mesh), {}, false};
+  FitState fit{original.usedPoints(), opt::buildTopology(mesh), ReferenceSurface(mesh), {}, false};
   std::size_t pulled = 0;
   for (const double share : {kFarShare, kNearShare})
     pulled += pullTowardsFarSamples(mesh, original, settings, maxPasses, share * limit, fit);
