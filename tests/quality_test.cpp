@@ -2,10 +2,12 @@
 // and the two-sided distance.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
+#include "quality/fold_check.h"
 #include "voxremesh/errors.h"
 #include "voxremesh/quality.h"
 
@@ -128,6 +130,23 @@ QuadMesh grid(int nx, int ny, double z = 0.0, double size = 1.0) {
       mesh.faces.push_back({a, a + 1, a + nx + 2, a + nx + 1});
     }
   return mesh;
+}
+
+TEST(FoldCheck, PairedOnceItFindsTheFoldsOfThePointsWhereverTheyMove) {
+  QuadMesh mesh = grid(3, 3);
+  const voxremesh::quality::FoldCheck check(mesh);
+  EXPECT_EQ(check.folded(mesh), voxremesh::foldedFaces(mesh));
+  // The middle points dragged past their neighbours turn faces over; each position is checked
+  // by the pairs made before the moves.
+  for (const double x : {0.5, 1.8, 2.6, 3.4}) {
+    mesh.points[5][0] = x;
+    mesh.points[6][2] = 0.3 * x;
+    const std::vector<std::uint8_t> folded = check.folded(mesh);
+    EXPECT_EQ(folded, voxremesh::foldedFaces(mesh)) << "at " << x;
+    if (x > 3.0) {
+      EXPECT_GT(std::count(folded.begin(), folded.end(), 1), 0) << "at " << x;
+    }
+  }
 }
 
 TEST(QualityReport, CountsFailuresPerCriterionAndAny) {

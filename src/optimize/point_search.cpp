@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "quality/fold_check.h"
 #include "voxremesh/quality.h"
 
 namespace voxremesh::opt {
@@ -42,6 +43,7 @@ struct LocalRing {
   QuadMesh mesh;
   CornerIndex v = 0;
   std::vector<CornerIndex> global;  ///< per local point, its index in the whole mesh, ascending
+  std::optional<quality::FoldCheck> folds;  ///< of `mesh`'s faces
 };
 
 LocalRing ringAround(const QuadMesh& mesh, const std::vector<Vec3>& positions, const Topology& t,
@@ -71,13 +73,14 @@ LocalRing ringAround(const QuadMesh& mesh, const std::vector<Vec3>& positions, c
     ring.mesh.faces.push_back(face);
   }
   ring.v = local(v);
+  ring.folds.emplace(ring.mesh);
   return ring;
 }
 
 /// The number of faces of the ring folded (foldedFaces) with v at `position`.
 std::size_t foldedWithVAt(LocalRing& ring, const Vec3& position) {
   ring.mesh.points[ring.v] = position;
-  const std::vector<std::uint8_t> folded = foldedFaces(ring.mesh);
+  const std::vector<std::uint8_t> folded = ring.folds->folded(ring.mesh);
   return std::size_t(std::count(folded.begin(), folded.end(), std::uint8_t(1)));
 }
 

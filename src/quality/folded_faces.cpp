@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "geometry/vec3.h"
+#include "quality/fold_check.h"
 #include "quality/ridge_edges.h"
 #include "voxremesh/quality.h"
 
@@ -24,7 +25,9 @@ Vec3 unitNormal(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face) {
 
 }  // namespace
 
-std::vector<std::uint8_t> foldedFaces(const QuadMesh& mesh, const std::vector<MeshCurve>* ridges) {
+namespace quality {
+
+FoldCheck::FoldCheck(const QuadMesh& mesh) {
   // Every directed face edge as (low point, high point, face, runs from low to high).
   struct HalfEdge {
     CornerIndex low, high;
@@ -43,39 +46,49 @@ std::vector<std::uint8_t> foldedFaces(const QuadMesh& mesh, const std::vector<Me
   std::sort(halfEdges.begin(), halfEdges.end(), [](const HalfEdge& x, const HalfEdge& y) {
     return std::tie(x.low, x.high, x.face) < std::tie(y.low, y.high, y.face);
   });
-  std::vector<Vec3> normals(mesh.faces.size());
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) normals[f] = unitNormal(mesh, mesh.faces[f]);
-  // Per face: neighbours seen, and those whose normal (in this face's orientation) is opposite.
-  std::vector<std::uint32_t> neighbours(mesh.faces.size(), 0), opposite(mesh.faces.size(), 0);
-  const double kOpposite = -0.5;  // more than 120 degrees apart
-  quality::RidgeEdges ridgeEdges(ridges);
   for (std::size_t i = 0; i < halfEdges.size();) {
     std::size_t j = i;
     while (j < halfEdges.size() && halfEdges[j].low == halfEdges[i].low &&
            halfEdges[j].high == halfEdges[i].high)
       ++j;
-    if (j - i == 2) {  // a manifold edge
-      const HalfEdge& a = halfEdges[i];
-      const HalfEdge& b = halfEdges[i + 1];
-      const double sign = a.forward != b.forward ? 1.0 : -1.0;
-      const double cosine = sign * dot(normals[a.face], normals[b.face]);
-      const bool bothHaveArea = dot(normals[a.face], normals[a.face]) > 0.0 &&
-                                dot(normals[b.face], normals[b.face]) > 0.0;
-      if (bothHaveArea && a.face != b.face) {
-        ++neighbours[a.face];
-        ++neighbours[b.face];
-        if (cosine < kOpposite && !ridgeEdges.along(mesh.points[a.low], mesh.points[a.high])) {
-          ++opposite[a.face];
-          ++opposite[b.face];
-        }
-      }
-    }
+    const HalfEdge& a = halfEdges[i];
+    // A manifold edge between two faces.
+    if (j - i == 2 && a.face != halfEdges[i + 1].face)
+      pairs_.push_back(
+          {a.face, halfEdges[i + 1].face, a.forward != halfEdges[i + 1].forward, a.low, a.high});
     i = j;
+  }
+}
+
+std::vector<std::uint8_t> FoldCheck::folded(const QuadMesh& mesh,
+                                            const std::vector<MeshCurve>* ridges) const {
+  std::vector<Vec3> normals(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) normals[f] = unitNormal(mesh, mesh.faces[f]);
+  // Per face: neighbours seen, and those whose normal (in this face's orientation) is opposite.
+  std::vector<std::uint32_t> neighbours(mesh.faces.size(), 0), opposite(mesh.faces.size(), 0);
+  const double kOpposite = -0.5;  // more than 120 degrees apart
+  RidgeEdges ridgeEdges(ridges);
+  for (const EdgePair& pair : pairs_) {
+    const Vec3 &a = normals[pair.first], &b = normals[pair.second];
+    if (!(dot(a, a) > 0.0 && dot(b, b) > 0.0)) continue;
+    ++neighbours[pair.first];
+    ++neighbours[pair.second];
+    const double cosine = (pair.opposite ? 1.0 : -1.0) * dot(a, b);
+    if (cosine < kOpposite && !ridgeEdges.along(mesh.points[pair.low], mesh.points[pair.high])) {
+      ++opposite[pair.first];
+      ++opposite[pair.second];
+    }
   }
   std::vector<std::uint8_t> folded(mesh.faces.size(), 0);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
     folded[f] = neighbours[f] > 0 && 2 * opposite[f] >= neighbours[f] ? 1 : 0;
   return folded;
+}
+
+}  // namespace quality
+
+std::vector<std::uint8_t> foldedFaces(const QuadMesh& mesh, const std::vector<MeshCurve>* ridges) {
+  return quality::FoldCheck(mesh).folded(mesh, ridges);
 }
 
 }  // namespace voxremesh
