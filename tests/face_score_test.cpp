@@ -152,4 +152,37 @@ TEST(FaceScore, EqualsTheFullMetricsUnderOtherLimits) {
   }
 }
 
+TEST(FaceFailures, EqualsTheMasksOfTheFullMetricsOfEveryFace) {
+  // A mesh of jittered and warped quads and triangles, the masks per criterion (not only their
+  // count) under the defaults, strict limits and the Jacobian at the Gauss points.
+  std::mt19937 random(13);
+  std::uniform_real_distribution<double> jitter(-0.45, 0.45);
+  QuadMesh mesh;
+  for (int i = 0; i < 4000; ++i) {
+    const auto first = static_cast<voxremesh::CornerIndex>(mesh.points.size());
+    for (const auto& corner : Points{{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}})
+      mesh.points.push_back(
+          {corner[0] + jitter(random), corner[1] + jitter(random), 0.5 * jitter(random)});
+    mesh.faces.push_back(
+        {first, first + 1, first + 2, i % 3 == 0 ? voxremesh::kNoCorner : first + 3});
+  }
+  QualitySettings strict = defaults(), gauss = defaults();
+  strict.minQuadAngleDeg = 80.0;
+  strict.maxWarpingDeg = 2.0;
+  strict.maxSkewDeg = 5.0;
+  gauss.jacobianAtGaussPoints = true;
+  const std::vector<ElementQuality> qualities = voxremesh::elementQualities(mesh);
+  for (const QualitySettings& s : {defaults(), strict, gauss}) {
+    const std::vector<std::uint32_t> failures = voxremesh::opt::faceFailures(mesh, s);
+    ASSERT_EQ(failures.size(), mesh.faces.size());
+    std::size_t failing = 0;
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+      const int corners = voxremesh::cornerCount(mesh.faces[f]);
+      EXPECT_EQ(failures[f], voxremesh::elementFailures(qualities[f], corners, s)) << f;
+      failing += failures[f] != 0;
+    }
+    EXPECT_GT(failing, mesh.faces.size() / 10);  // the masks are not all empty
+  }
+}
+
 }  // namespace

@@ -1,6 +1,9 @@
 // faceScore and facePenalty: the comparison the optimisation steps choose by (face_score.h).
 #include "optimize/face_score.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <cmath>
 
 #include "quality/windowed_quality.h"
@@ -88,15 +91,36 @@ Score scoreOfQuality(const ElementQuality& q, int corners, const QualitySettings
   return score;
 }
 
-Score faceScore(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face,
-                const QualitySettings& settings) {
+namespace {
+
+/// The metrics of a face as faceScore needs them: angles inside their soft limits add nothing
+/// and fail nothing, so their degrees are not computed.
+ElementQuality windowedQuality(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face,
+                               const QualitySettings& settings) {
   const int n = cornerCount(face);
   std::array<std::array<double, 3>, 4> p{};
   for (int k = 0; k < n; ++k) p[std::size_t(k)] = mesh.points[face[std::size_t(k)]];
-  // Angles inside their soft limits add nothing and fail nothing: their degrees are not needed.
-  return scoreOfQuality(
-      elementQualityWithin(p, n, windowFor(settings, n), settings.jacobianAtGaussPoints), n,
-      settings);
+  return elementQualityWithin(p, n, windowFor(settings, n), settings.jacobianAtGaussPoints);
+}
+
+}  // namespace
+
+Score faceScore(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face,
+                const QualitySettings& settings) {
+  return scoreOfQuality(windowedQuality(mesh, face, settings), cornerCount(face), settings);
+}
+
+std::vector<std::uint32_t> faceFailures(const QuadMesh& mesh, const QualitySettings& settings) {
+  std::vector<std::uint32_t> failures(mesh.faces.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.faces.size(), 256),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t f = r.begin(); f < r.end(); ++f) {
+                        const auto& face = mesh.faces[f];
+                        failures[f] = elementFailures(windowedQuality(mesh, face, settings),
+                                                      cornerCount(face), settings);
+                      }
+                    });
+  return failures;
 }
 
 }  // namespace voxremesh::opt

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <vector>
 
 #include "voxremesh/quad_mesh.h"
 #include "voxremesh/quality.h"
@@ -59,5 +61,11 @@ Score scoreOfQuality(const ElementQuality& q, int corners, const QualitySettings
 /// same score, bit for bit).
 Score faceScore(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face,
                 const QualitySettings& settings);
+
+/// The criteria each face of `mesh` fails: elementFailures (quality.h) of its metrics, computed as
+/// faceScore computes them (the same masks as from elementQualities, found without the degrees of
+/// angles inside their soft limits), the faces in parallel.
+/// Preconditions: every corner names an existing point; settings pass checkQualitySettings.
+std::vector<std::uint32_t> faceFailures(const QuadMesh& mesh, const QualitySettings& settings);
 
 }  // namespace voxremesh::opt

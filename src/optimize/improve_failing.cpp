@@ -22,10 +22,10 @@ namespace {
 std::vector<CornerIndex> pointsOfFailingFaces(const QuadMesh& mesh, const opt::Topology& t,
                                               const QualitySettings& settings) {
   std::vector<CornerIndex> points;
-  const std::vector<ElementQuality> qualities = elementQualities(mesh);  // in parallel
+  const std::vector<std::uint32_t> failures = opt::faceFailures(mesh, settings);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const auto& face = mesh.faces[f];
-    if (elementFailures(qualities[f], cornerCount(face), settings) == 0) continue;
+    if (failures[f] == 0) continue;
     for (int k = 0; k < cornerCount(face); ++k) {
       const CornerIndex v = face[std::size_t(k)];
       if (opt::searchable(mesh, t, v)) points.push_back(v);

@@ -502,13 +502,10 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
   for (int round = 0; round < 2 * maxRounds; ++round) {
     const std::uint32_t criteriaTried = round < maxRounds ? ~0u : degenerate;
     const opt::Topology t = opt::buildTopology(mesh);
-    const std::vector<ElementQuality> qualities = elementQualities(mesh);
+    const std::vector<std::uint32_t> failures = opt::faceFailures(mesh, settings);
     std::vector<Candidate> failing;
-    for (std::uint32_t f = 0; f < mesh.faces.size(); ++f) {
-      const std::uint32_t failures =
-          elementFailures(qualities[f], cornerCount(mesh.faces[f]), settings);
-      if ((failures & criteriaTried) != 0) failing.push_back(Candidate{f, failures, {}});
-    }
+    for (std::uint32_t f = 0; f < mesh.faces.size(); ++f)
+      if ((failures[f] & criteriaTried) != 0) failing.push_back(Candidate{f, failures[f], {}});
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, failing.size(), 16),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t i = r.begin(); i < r.end(); ++i)
