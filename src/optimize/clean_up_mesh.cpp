@@ -1,12 +1,12 @@
 // cleanUpMesh: zero-area faces and doublets (Free interior points in exactly two faces).
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "optimize/mesh_topology.h"
+#include "optimize/steps.h"
 #include "voxremesh/optimize.h"
 
 namespace voxremesh {
@@ -200,7 +200,7 @@ std::size_t collapseFoldedCurveFaces(QuadMesh& mesh, const opt::Topology& topolo
 
 }  // namespace
 
-CleanupResult cleanUpMesh(QuadMesh& mesh, const CleanupSettings& settings) {
+CleanupResult cleanUpMesh(QuadMesh& mesh, const CleanupSettings& settings, opt::MeshCache& cache) {
   const double zeroArea = settings.zeroArea, shortEdge = settings.shortEdge;
   if (!std::isfinite(zeroArea) || zeroArea < 0.0)
     throw std::invalid_argument("cleanUpMesh: zero-area threshold " + std::to_string(zeroArea) +
@@ -211,32 +211,28 @@ CleanupResult cleanUpMesh(QuadMesh& mesh, const CleanupSettings& settings) {
   CleanupResult result;
   result.zeroAreaFaces += dropRepeatedCorners(mesh);
   opt::checkMesh(mesh);
-  // Each step reads the topology of the mesh as it finds it: built again only after a step
-  // changed the mesh (a step that does nothing leaves it as it was).
-  std::optional<opt::Topology> topology;
-  const auto current = [&]() -> const opt::Topology& {
-    if (!topology) topology = opt::buildTopology(mesh);
-    return *topology;
-  };
-  const auto changed = [&](std::size_t count) {
-    if (count > 0) topology.reset();
-    return count;
-  };
+  // Each step reads the topology of the mesh as it finds it (built again only after a step
+  // changed the mesh).
   for (;;) {
-    const std::size_t duplicates = changed(removeDuplicateFaces(mesh));
+    const std::size_t duplicates = removeDuplicateFaces(mesh);
     result.duplicateFaces += duplicates;
     const std::size_t zero =
-        changed(collapseSmallFaces(mesh, current(), zeroArea, shortEdge, result));
-    const std::size_t doublets = changed(removeDoublets(mesh, current()));
+        collapseSmallFaces(mesh, cache.topology(mesh), zeroArea, shortEdge, result);
+    const std::size_t doublets = removeDoublets(mesh, cache.topology(mesh));
     result.valence2Points += doublets;
     const std::size_t folded = settings.foldedCurves && !mesh.constraints.empty()
-                                   ? changed(collapseFoldedCurveFaces(mesh, current()))
+                                   ? collapseFoldedCurveFaces(mesh, cache.topology(mesh))
                                    : 0;
     result.foldedCurveFaces += folded;
     if (duplicates == 0 && zero == 0 && doublets == 0 && folded == 0) break;
   }
   eraseUnusedPoints(mesh);
   return result;
+}
+
+CleanupResult cleanUpMesh(QuadMesh& mesh, const CleanupSettings& settings) {
+  opt::MeshCache cache;
+  return cleanUpMesh(mesh, settings, cache);
 }
 
 }  // namespace voxremesh

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "optimize/mesh_topology.h"
+#include "optimize/steps.h"
 #include "voxremesh/optimize.h"
 
 namespace voxremesh {
@@ -28,11 +29,12 @@ int rhombicDiagonal(const QuadMesh& mesh, const opt::Topology& t,
 
 }  // namespace
 
-std::size_t collapseRhombicQuads(QuadMesh& mesh, const ReferenceSurface* surface) {
+std::size_t collapseRhombicQuads(QuadMesh& mesh, const ReferenceSurface* surface,
+                                 opt::MeshCache& cache) {
   opt::checkMesh(mesh);
   std::size_t collapsed = 0;
   for (;;) {
-    const opt::Topology topology = opt::buildTopology(mesh);
+    const opt::Topology& topology = cache.topology(mesh);
     std::vector<std::uint8_t> locked(mesh.points.size(), 0), deleted(mesh.faces.size(), 0);
     std::size_t round = 0;
     for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
@@ -51,6 +53,11 @@ std::size_t collapseRhombicQuads(QuadMesh& mesh, const ReferenceSurface* surface
   }
   eraseUnusedPoints(mesh);
   return collapsed;
+}
+
+std::size_t collapseRhombicQuads(QuadMesh& mesh, const ReferenceSurface* surface) {
+  opt::MeshCache cache;
+  return collapseRhombicQuads(mesh, surface, cache);
 }
 
 }  // namespace voxremesh

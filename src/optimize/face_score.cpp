@@ -1,9 +1,6 @@
 // faceScore and facePenalty: the comparison the optimisation steps choose by (face_score.h).
 #include "optimize/face_score.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <cmath>
 
 #include "quality/windowed_quality.h"
@@ -110,17 +107,9 @@ Score faceScore(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face,
   return scoreOfQuality(windowedQuality(mesh, face, settings), cornerCount(face), settings);
 }
 
-std::vector<std::uint32_t> faceFailures(const QuadMesh& mesh, const QualitySettings& settings) {
-  std::vector<std::uint32_t> failures(mesh.faces.size());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, mesh.faces.size(), 256),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t f = r.begin(); f < r.end(); ++f) {
-                        const auto& face = mesh.faces[f];
-                        failures[f] = elementFailures(windowedQuality(mesh, face, settings),
-                                                      cornerCount(face), settings);
-                      }
-                    });
-  return failures;
+std::uint32_t faceFailures(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face,
+                           const QualitySettings& settings) {
+  return elementFailures(windowedQuality(mesh, face, settings), cornerCount(face), settings);
 }
 
 }  // namespace voxremesh::opt

@@ -5,7 +5,6 @@
 
 #include <array>
 #include <cstdint>
-#include <vector>
 
 #include "voxremesh/quad_mesh.h"
 #include "voxremesh/quality.h"
@@ -62,10 +61,11 @@ Score scoreOfQuality(const ElementQuality& q, int corners, const QualitySettings
 Score faceScore(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face,
                 const QualitySettings& settings);
 
-/// The criteria each face of `mesh` fails: elementFailures (quality.h) of its metrics, computed as
-/// faceScore computes them (the same masks as from elementQualities, found without the degrees of
-/// angles inside their soft limits), the faces in parallel.
+/// The criteria one face of `mesh` fails: elementFailures (quality.h) of its metrics, computed as
+/// faceScore computes them (the same mask as from elementQuality, found without the degrees of
+/// angles inside their soft limits).
 /// Preconditions: every corner names an existing point; settings pass checkQualitySettings.
-std::vector<std::uint32_t> faceFailures(const QuadMesh& mesh, const QualitySettings& settings);
+std::uint32_t faceFailures(const QuadMesh& mesh, const std::array<CornerIndex, 4>& face,
+                           const QualitySettings& settings);
 
 }  // namespace voxremesh::opt

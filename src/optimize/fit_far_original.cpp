@@ -16,6 +16,7 @@
 #include "optimize/independent_classes.h"
 #include "optimize/mesh_topology.h"
 #include "optimize/point_search.h"
+#include "optimize/steps.h"
 #include "voxremesh/optimize.h"
 
 namespace voxremesh {
@@ -162,7 +163,7 @@ struct PullCandidate {
 /// sample, current while no point has moved since it was found.
 struct FitState {
   std::vector<Vec3> samples;
-  opt::Topology topology;
+  const opt::Topology& topology;
   ReferenceSurface surface;
   std::vector<SurfaceHit> hits;
   bool hitsCurrent = false;
@@ -281,7 +282,8 @@ std::size_t pullTowardsFarSamples(QuadMesh& mesh, const ReferenceSurface& origin
 }  // namespace
 
 std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& original,
-                                 const QualitySettings& settings, int maxPasses) {
+                                 const QualitySettings& settings, int maxPasses,
+                                 opt::MeshCache& cache) {
   if (original.empty())
     throw std::invalid_argument("fitFarOriginalPoints: the original surface is empty");
   if (maxPasses < 0) throw std::invalid_argument("fitFarOriginalPoints: negative pass count");
@@ -292,11 +294,17 @@ std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& origina
   if (mesh.faces.empty()) return 0;
   const double limit =
       settings.maxDistanceFactor * lengthScale(settings, Criterion::Distance, settings.targetSize);
-  FitState fit{original.usedPoints(), opt::buildTopology(mesh), ReferenceSurface(mesh), {}, false};
+  FitState fit{original.usedPoints(), cache.topology(mesh), ReferenceSurface(mesh), {}, false};
   std::size_t pulled = 0;
   for (const double share : {kFarShare, kNearShare})
     pulled += pullTowardsFarSamples(mesh, original, settings, maxPasses, share * limit, fit);
   return pulled;
+}
+
+std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& original,
+                                 const QualitySettings& settings, int maxPasses) {
+  opt::MeshCache cache(settings);
+  return fitFarOriginalPoints(mesh, original, settings, maxPasses, cache);
 }
 
 }  // namespace voxremesh

@@ -8,6 +8,7 @@
 
 #include "optimize/independent_classes.h"
 #include "optimize/point_search.h"
+#include "optimize/steps.h"
 #include "voxremesh/optimize.h"
 
 namespace voxremesh {
@@ -20,9 +21,8 @@ namespace {
 
 /// The points of the faces that fail a criterion and can move, ascending.
 std::vector<CornerIndex> pointsOfFailingFaces(const QuadMesh& mesh, const opt::Topology& t,
-                                              const QualitySettings& settings) {
+                                              const std::vector<std::uint32_t>& failures) {
   std::vector<CornerIndex> points;
-  const std::vector<std::uint32_t> failures = opt::faceFailures(mesh, settings);
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const auto& face = mesh.faces[f];
     if (failures[f] == 0) continue;
@@ -39,7 +39,8 @@ std::vector<CornerIndex> pointsOfFailingFaces(const QuadMesh& mesh, const opt::T
 }  // namespace
 
 std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& original,
-                                   const QualitySettings& settings, int sweeps) {
+                                   const QualitySettings& settings, int sweeps,
+                                   opt::MeshCache& cache) {
   if (original.empty())
     throw std::invalid_argument("improveFailingElements: the original surface is empty");
   if (sweeps < 0) throw std::invalid_argument("improveFailingElements: negative sweep count");
@@ -47,7 +48,7 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
     throw std::invalid_argument("improveFailingElements: targetSize must be > 0");
   checkQualitySettings(settings);
   opt::checkMesh(mesh);
-  const opt::Topology topology = opt::buildTopology(mesh);
+  const opt::Topology& topology = cache.topology(mesh);
   const std::vector<std::vector<Vec3>> fixedOnCurve = fixedPointsOnCurves(mesh);
   const std::vector<PolylineIndex> curves = opt::indexCurves(mesh);
   std::size_t moved = 0;
@@ -62,7 +63,8 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
     // also read the faces across their faces' edges, which may hold another point of the class:
     // they read the positions from before the class (`frozen`), so the result does not depend on
     // the thread count.
-    const std::vector<CornerIndex> failingPoints = pointsOfFailingFaces(mesh, topology, settings);
+    const std::vector<CornerIndex> failingPoints =
+        pointsOfFailingFaces(mesh, topology, cache.failures(mesh));
     std::vector<opt::PointAccess> access(failingPoints.size());
     for (std::size_t i = 0; i < failingPoints.size(); ++i) {
       const CornerIndex v = failingPoints[i];
@@ -94,6 +96,12 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
     if (movedThisSweep == 0) break;
   }
   return moved;
+}
+
+std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& original,
+                                   const QualitySettings& settings, int sweeps) {
+  opt::MeshCache cache(settings);
+  return improveFailingElements(mesh, original, settings, sweeps, cache);
 }
 
 }  // namespace voxremesh

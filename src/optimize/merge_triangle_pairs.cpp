@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "optimize/mesh_topology.h"
+#include "optimize/steps.h"
 #include "voxremesh/errors.h"
 #include "voxremesh/optimize.h"
 
@@ -33,12 +34,13 @@ bool pairQuad(const std::array<CornerIndex, 4>& t1, const std::array<CornerIndex
 
 }  // namespace
 
-std::size_t mergeTrianglePairs(QuadMesh& mesh, const QualitySettings& settings) {
+std::size_t mergeTrianglePairs(QuadMesh& mesh, const QualitySettings& settings,
+                               opt::MeshCache& cache) {
   checkQualitySettings(settings);
   if (!(settings.targetSize > 0.0))
     throw std::invalid_argument("mergeTrianglePairs: settings.targetSize must be > 0");
   opt::checkMesh(mesh);
-  const opt::Topology topology = opt::buildTopology(mesh);
+  const opt::Topology& topology = cache.topology(mesh);
   // Candidates: (score, first triangle, second triangle, quad).
   std::vector<std::tuple<double, std::uint32_t, std::uint32_t, std::array<CornerIndex, 4>>> pairs;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
@@ -81,6 +83,11 @@ std::size_t mergeTrianglePairs(QuadMesh& mesh, const QualitySettings& settings) 
   }
   opt::eraseFaces(mesh, deleted);
   return merged;
+}
+
+std::size_t mergeTrianglePairs(QuadMesh& mesh, const QualitySettings& settings) {
+  opt::MeshCache cache(settings);
+  return mergeTrianglePairs(mesh, settings, cache);
 }
 
 }  // namespace voxremesh

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "optimize/steps.h"
 #include "voxremesh/errors.h"
 #include "voxremesh/optimize.h"
 
@@ -63,10 +64,13 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
   cleanupSettings.zeroArea = settings.zeroAreaFactor * quality.targetSize * quality.targetSize;
   cleanupSettings.shortEdge = settings.shortEdgeFactor * quality.targetSize;
   cleanupSettings.foldedCurves = settings.collapseFoldedCurves;
+  // What the steps find of the whole mesh (its topology, the faces failing) is kept for the next
+  // steps while it holds.
+  opt::MeshCache cache(quality);
 
   auto cleanUp = [&] {
     const Clock::time_point t = Clock::now();
-    const CleanupResult r = cleanUpMesh(mesh, cleanupSettings);
+    const CleanupResult r = cleanUpMesh(mesh, cleanupSettings, cache);
     s.cleanup.zeroAreaFaces += r.zeroAreaFaces;
     s.cleanup.shortEdges += r.shortEdges;
     s.cleanup.duplicateFaces += r.duplicateFaces;
@@ -76,7 +80,8 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
   };
   auto relax = [&] {
     const Clock::time_point t = Clock::now();
-    relaxMesh(mesh, original, settings.relaxIterations, settings.relaxDamping, quality.targetSize);
+    relaxMesh(mesh, original, settings.relaxIterations, settings.relaxDamping, quality.targetSize,
+              cache);
     s.relaxSeconds += secondsSince(t);
   };
 
@@ -89,14 +94,14 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
   cleanUp();
   if (settings.collapseRhombic) {
     const Clock::time_point t = Clock::now();
-    s.rhombicCollapsed = collapseRhombicQuads(mesh, &original);
+    s.rhombicCollapsed = collapseRhombicQuads(mesh, &original, cache);
     s.rhombicSeconds = secondsSince(t);
     cleanUp();
   }
   relax();
   if (settings.mergeTriangles && quality.targetSize > 0.0) {
     const Clock::time_point t = Clock::now();
-    s.trianglesMerged = mergeTrianglePairs(mesh, quality);
+    s.trianglesMerged = mergeTrianglePairs(mesh, quality, cache);
     s.mergeSeconds = secondsSince(t);
     relax();
   }
@@ -107,7 +112,8 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
   const bool improve = settings.improveSweeps > 0 && quality.targetSize > 0.0;
   auto improveFailing = [&] {
     const Clock::time_point t = Clock::now();
-    s.improvedMoves += improveFailingElements(mesh, original, quality, settings.improveSweeps);
+    s.improvedMoves +=
+        improveFailingElements(mesh, original, quality, settings.improveSweeps, cache);
     s.improveSeconds += secondsSince(t);
   };
   // The search engine (reconnectFailingFaces) in three phases: pairs of faces recut, without
@@ -120,7 +126,7 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
     reconnect.sweeps = sweeps;
     reconnect.edits = edits;
     reconnect.maxTriangleShare = settings.splitFailingShare;
-    return reconnectFailingFaces(mesh, original, quality, reconnect);
+    return reconnectFailingFaces(mesh, original, quality, reconnect, cache);
   };
   if (improve) improveFailing();
   // The recut pairs (edge rotations) after the first improvement pass, and the improvement again
@@ -135,10 +141,10 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
   const double warpingDeg =
       settings.warpingDeg.value_or(kWarpingRemovalShare * quality.maxWarpingDeg);
   s.warping = removeWarping(mesh, warpingDeg, settings.warpingIterations,
-                            settings.warpingMoveFactor * quality.targetSize);
+                            settings.warpingMoveFactor * quality.targetSize, cache);
   s.warpingSeconds = secondsSince(t);
   // Folds out before the last passes, which then work on the filled regions too.
-  s.foldsRefilled = refillFoldedRegions(mesh, original, quality);
+  s.foldsRefilled = refillFoldedRegions(mesh, original, quality, cache);
   if (improve) improveFailing();
   if (settings.reconnectRounds > 0 && quality.targetSize > 0.0) {
     const Clock::time_point r = Clock::now();
@@ -147,7 +153,7 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
   }
   if (settings.fitPasses > 0 && quality.targetSize > 0.0) {
     const Clock::time_point f = Clock::now();
-    s.farPulls = fitFarOriginalPoints(mesh, original, quality, settings.fitPasses);
+    s.farPulls = fitFarOriginalPoints(mesh, original, quality, settings.fitPasses, cache);
     s.fitSeconds = secondsSince(f);
   }
   const Clock::time_point q = Clock::now();
@@ -157,7 +163,7 @@ void optimizeQuadMesh(QuadMesh& mesh, const ReferenceSurface& original,
   s.quadSplitSeconds = secondsSince(q);
   // The last passes move points and split quads: a fold they leave (a sliver along a boundary edge
   // turned over as its neighbour quad is split) is cut out as the first ones were.
-  s.foldsRefilled += refillFoldedRegions(mesh, original, quality);
+  s.foldsRefilled += refillFoldedRegions(mesh, original, quality, cache);
   s.totalSeconds = secondsSince(start);
   if (stats) *stats = s;
 }

@@ -16,6 +16,7 @@
 #include "optimize/edge_polygon.h"
 #include "optimize/independent_classes.h"
 #include "optimize/point_search.h"
+#include "optimize/steps.h"
 #include "voxremesh/errors.h"
 #include "voxremesh/optimize.h"
 
@@ -471,7 +472,7 @@ std::optional<Trial> bestTrialAt(const QuadMesh& mesh, const opt::Topology& t, c
 
 std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& original,
                                   const QualitySettings& settings,
-                                  const ReconnectSettings& reconnect) {
+                                  const ReconnectSettings& reconnect, opt::MeshCache& cache) {
   if (original.empty())
     throw std::invalid_argument("reconnectFailingFaces: the original surface is empty");
   const int maxRounds = reconnect.rounds;
@@ -501,8 +502,8 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
   const std::uint32_t degenerate = 1u << unsigned(Criterion::DegenerateCorner);
   for (int round = 0; round < 2 * maxRounds; ++round) {
     const std::uint32_t criteriaTried = round < maxRounds ? ~0u : degenerate;
-    const opt::Topology t = opt::buildTopology(mesh);
-    const std::vector<std::uint32_t> failures = opt::faceFailures(mesh, settings);
+    const opt::Topology& t = cache.topology(mesh);
+    const std::vector<std::uint32_t>& failures = cache.failures(mesh);
     std::vector<Candidate> failing;
     for (std::uint32_t f = 0; f < mesh.faces.size(); ++f)
       if ((failures[f] & criteriaTried) != 0) failing.push_back(Candidate{f, failures[f], {}});
@@ -570,6 +571,13 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
   }
   if (changed > 0) eraseUnusedPoints(mesh);
   return changed;
+}
+
+std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& original,
+                                  const QualitySettings& settings,
+                                  const ReconnectSettings& reconnect) {
+  opt::MeshCache cache(settings);
+  return reconnectFailingFaces(mesh, original, settings, reconnect, cache);
 }
 
 }  // namespace voxremesh

@@ -9,6 +9,7 @@
 #include "optimize/chord_error.h"
 #include "optimize/face_score.h"
 #include "optimize/mesh_topology.h"
+#include "optimize/steps.h"
 #include "voxremesh/optimize.h"
 #include "voxremesh/quality.h"
 
@@ -289,12 +290,12 @@ bool untangleRegion(QuadMesh& mesh, const opt::Topology& t, const ReferenceSurfa
 }  // namespace
 
 std::size_t refillFoldedRegions(QuadMesh& mesh, const ReferenceSurface& original,
-                                const QualitySettings& settings) {
+                                const QualitySettings& settings, opt::MeshCache& cache) {
   opt::checkMesh(mesh);
   if (original.empty()) throw std::invalid_argument("refillFoldedRegions: the surface is empty");
   const std::vector<std::uint8_t> folded = foldedFaces(mesh);
   if (std::count(folded.begin(), folded.end(), std::uint8_t(1)) == 0) return 0;
-  const opt::Topology t = opt::buildTopology(mesh);
+  const opt::Topology& t = cache.topology(mesh);
   const std::size_t pointsBefore = mesh.points.size();
   // The folded faces and every face sharing a point with them: their outline then runs through
   // faces that are not folded.
@@ -396,6 +397,12 @@ std::size_t refillFoldedRegions(QuadMesh& mesh, const ReferenceSurface& original
   eraseUnusedPoints(result);
   mesh = std::move(result);
   return refilled;
+}
+
+std::size_t refillFoldedRegions(QuadMesh& mesh, const ReferenceSurface& original,
+                                const QualitySettings& settings) {
+  opt::MeshCache cache(settings);
+  return refillFoldedRegions(mesh, original, settings, cache);
 }
 
 }  // namespace voxremesh

@@ -10,6 +10,7 @@
 
 #include "optimize/ideal_shape.h"
 #include "optimize/mesh_topology.h"
+#include "optimize/steps.h"
 #include "voxremesh/optimize.h"
 
 namespace voxremesh {
@@ -132,7 +133,7 @@ Vec3 relaxed(const QuadMesh& mesh, const opt::Topology& t, const ReferenceSurfac
 }  // namespace
 
 void relaxMesh(QuadMesh& mesh, const ReferenceSurface& original, int iterations, double damping,
-               double targetSize) {
+               double targetSize, opt::MeshCache& cache) {
   if (original.empty()) throw std::invalid_argument("relaxMesh: the original surface is empty");
   if (iterations < 0) throw std::invalid_argument("relaxMesh: negative iteration count");
   if (!std::isfinite(targetSize) || targetSize < 0.0)
@@ -142,7 +143,7 @@ void relaxMesh(QuadMesh& mesh, const ReferenceSurface& original, int iterations,
     throw std::invalid_argument("relaxMesh: damping " + std::to_string(damping) +
                                 " is not in (0, 0.7]");
   opt::checkMesh(mesh);
-  const opt::Topology topology = opt::buildTopology(mesh);
+  const opt::Topology& topology = cache.topology(mesh);
   const std::size_t count = mesh.points.size();
   std::vector<std::vector<CornerIndex>> along(count);
   for (CornerIndex v = 0; v < count; ++v) along[v] = curveNeighbours(mesh, topology, v);
@@ -165,6 +166,12 @@ void relaxMesh(QuadMesh& mesh, const ReferenceSurface& original, int iterations,
                       });
     mesh.points.swap(next);
   }
+}
+
+void relaxMesh(QuadMesh& mesh, const ReferenceSurface& original, int iterations, double damping,
+               double targetSize) {
+  opt::MeshCache cache;
+  relaxMesh(mesh, original, iterations, damping, targetSize, cache);
 }
 
 }  // namespace voxremesh

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "optimize/mesh_topology.h"
+#include "optimize/steps.h"
 #include "voxremesh/optimize.h"
 
 namespace voxremesh {
@@ -49,15 +50,15 @@ Vec3 clamped(const Vec3& from, const Vec3& q, double radius) {
 
 }  // namespace
 
-WarpingResult removeWarping(QuadMesh& mesh, double maxWarpingDeg, int maxIterations,
-                            double maxMove) {
+WarpingResult removeWarping(QuadMesh& mesh, double maxWarpingDeg, int maxIterations, double maxMove,
+                            opt::MeshCache& cache) {
   if (!std::isfinite(maxWarpingDeg) || maxWarpingDeg < 0.0)
     throw std::invalid_argument("removeWarping: threshold " + std::to_string(maxWarpingDeg) +
                                 " is not a finite angle >= 0");
   if (maxIterations < 0) throw std::invalid_argument("removeWarping: negative iteration count");
   if (!(maxMove > 0.0)) throw std::invalid_argument("removeWarping: maxMove must be > 0");
   opt::checkMesh(mesh);
-  const opt::Topology topology = opt::buildTopology(mesh);
+  const opt::Topology& topology = cache.topology(mesh);
   const std::size_t faceCount = mesh.faces.size();
   const double cosLimit = std::cos(maxWarpingDeg * 0.017453292519943295);
   std::vector<QuadPlane> planes(faceCount);
@@ -118,6 +119,12 @@ WarpingResult removeWarping(QuadMesh& mesh, double maxWarpingDeg, int maxIterati
     }
   }
   return result;
+}
+
+WarpingResult removeWarping(QuadMesh& mesh, double maxWarpingDeg, int maxIterations,
+                            double maxMove) {
+  opt::MeshCache cache;
+  return removeWarping(mesh, maxWarpingDeg, maxIterations, maxMove, cache);
 }
 
 }  // namespace voxremesh
