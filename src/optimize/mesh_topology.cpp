@@ -81,14 +81,15 @@ Topology buildTopology(const QuadMesh& mesh, const std::vector<std::uint8_t>* de
       t.faceList[fill[mesh.faces[f][static_cast<std::size_t>(k)]]++] =
           static_cast<std::uint32_t>(f);
   }
-  // Neighbours per point: the two corners beside it in each of its faces, sorted, counted.
-  std::vector<std::uint32_t> candidates(2 * t.faceList.size());
+  // Neighbours per point: the two corners beside it in each of its faces, sorted; a neighbour
+  // appears once per face of the edge to it, so the length of its run is that edge's face count.
+  std::vector<std::uint32_t> candidates(2 * t.faceList.size()), runs(candidates.size());
   std::vector<std::uint32_t> unique(points + 1, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t v = r.begin(); v < r.end(); ++v) {
-                        std::uint32_t* out = candidates.data() + 2 * t.faceStart[v];
-                        std::uint32_t* const begin = out;
+                        std::uint32_t* const begin = candidates.data() + 2 * t.faceStart[v];
+                        std::uint32_t* out = begin;
                         for (std::uint32_t i = t.faceStart[v]; i < t.faceStart[v + 1]; ++i) {
                           const auto& face = mesh.faces[t.faceList[i]];
                           const int n = cornerCount(face);
@@ -98,37 +99,38 @@ Topology buildTopology(const QuadMesh& mesh, const std::vector<std::uint8_t>* de
                           *out++ = face[static_cast<std::size_t>((k + 1) % n)];
                         }
                         std::sort(begin, out);
-                        unique[v + 1] = static_cast<std::uint32_t>(std::unique(begin, out) - begin);
+                        // The distinct neighbours to the front, each with the length of its run.
+                        std::uint32_t* const count = runs.data() + 2 * t.faceStart[v];
+                        std::size_t distinct = 0;
+                        for (const std::uint32_t* w = begin; w != out; ++w) {
+                          if (distinct > 0 && begin[distinct - 1] == *w) {
+                            ++count[distinct - 1];
+                            continue;
+                          }
+                          begin[distinct] = *w;
+                          count[distinct++] = 1;
+                        }
+                        unique[v + 1] = static_cast<std::uint32_t>(distinct);
                       }
                     });
   for (std::size_t v = 0; v < points; ++v) unique[v + 1] += unique[v];
   t.nbrStart = std::move(unique);
   t.nbrList.resize(t.nbrStart[points]);
-  t.nbrFaces.assign(t.nbrList.size(), 0);
+  t.nbrFaces.resize(t.nbrList.size());
   t.boundary.assign(points, 0);
-  tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, points), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t v = r.begin(); v < r.end(); ++v) {
-          const std::uint32_t* sorted = candidates.data() + 2 * t.faceStart[v];
-          std::copy(sorted, sorted + t.degree(static_cast<CornerIndex>(v)),
-                    t.nbrList.begin() + t.nbrStart[v]);
-          // Faces of edge (v, w): the faces of v in which w is beside v.
-          for (std::uint32_t i = t.faceStart[v]; i < t.faceStart[v + 1]; ++i) {
-            const auto& face = mesh.faces[t.faceList[i]];
-            const int n = cornerCount(face);
-            int k = 0;
-            while (face[static_cast<std::size_t>(k)] != v) ++k;
-            for (const int side : {n - 1, 1}) {
-              const std::uint32_t w = face[static_cast<std::size_t>((k + side) % n)];
-              const auto at = std::lower_bound(t.nbrList.begin() + t.nbrStart[v],
-                                               t.nbrList.begin() + t.nbrStart[v + 1], w);
-              ++t.nbrFaces[static_cast<std::size_t>(at - t.nbrList.begin())];
-            }
-          }
-          for (std::uint32_t i = t.nbrStart[v]; i < t.nbrStart[v + 1]; ++i)
-            if (t.nbrFaces[i] == 1) t.boundary[v] = 1;
-        }
-      });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t v = r.begin(); v < r.end(); ++v) {
+                        const std::size_t from = 2 * t.faceStart[v], to = t.nbrStart[v];
+                        const std::size_t degree = t.degree(static_cast<CornerIndex>(v));
+                        std::copy_n(candidates.begin() + std::ptrdiff_t(from), degree,
+                                    t.nbrList.begin() + std::ptrdiff_t(to));
+                        std::copy_n(runs.begin() + std::ptrdiff_t(from), degree,
+                                    t.nbrFaces.begin() + std::ptrdiff_t(to));
+                        for (std::size_t i = to; i < to + degree; ++i)
+                          if (t.nbrFaces[i] == 1) t.boundary[v] = 1;
+                      }
+                    });
   return t;
 }
 
