@@ -1,5 +1,6 @@
-// Exact closest points on a fixed triangle/quad surface and on polylines: the original surface
-// that the optimiser projects onto and that the quality stage measures distances to.
+// Exact closest points on a triangle/quad surface and on polylines: the original surface that the
+// optimiser projects onto and that the quality stage measures distances to. Its faces are fixed;
+// its points may move (movePoints), the queries' answers staying exact.
 //
 // The surface is the triangles of a QuadMesh's faces (a quad split into p0-p1-p2 and p0-p2-p3).
 // Queries use a bounding-volume hierarchy (median splits along the longest axis of the triangle
@@ -26,7 +27,7 @@ struct SurfaceHit {
   std::uint32_t face = 0;         ///< the face of the source mesh it lies on
 };
 
-/// A static surface with exact closest-point queries (see the top of the file).
+/// A surface of fixed faces with exact closest-point queries (see the top of the file).
 class ReferenceSurface {
  public:
   /// An empty surface (closestPoint must not be called on it).
