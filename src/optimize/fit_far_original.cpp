@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -128,10 +129,26 @@ bool pullCorner(QuadMesh& mesh, const opt::Topology& t, CornerIndex v, const Pas
     }
   std::stable_sort(near.begin(), near.end(),
                    [](const NearSample& a, const NearSample& b) { return a.before > b.before; });
-  const int failuresBefore = opt::scoreAround(mesh, t, v, pass.settings).failures;
-  const opt::ChordAroundPoint chordError(mesh, around, v, pass.original);
-  const double chordAllowed = std::max(chordError(mesh), far);
   const Vec3 start = mesh.points[v];
+  // What a try that lies less beyond `far` is checked against (most tries are not): found at the
+  // first such try, with v put back at its start for the measures before the move.
+  struct Guards {
+    int failuresBefore = 0;
+    opt::ChordAroundPoint chordError;
+    double chordAllowed = 0.0;
+  };
+  std::optional<Guards> guards;
+  const auto guardsFor = [&]() -> const Guards& {
+    if (!guards) {
+      const Vec3 at = mesh.points[v];
+      mesh.points[v] = start;
+      guards.emplace(Guards{opt::scoreAround(mesh, t, v, pass.settings).failures,
+                            opt::ChordAroundPoint(mesh, around, v, pass.original), 0.0});
+      guards->chordAllowed = std::max(guards->chordError(mesh), far);
+      mesh.points[v] = at;
+    }
+    return *guards;
+  };
   double best = 0.0;
   for (const NearSample& sample : near)
     if (sample.before > far) best += (sample.before - far) * (sample.before - far);
@@ -144,8 +161,9 @@ bool pullCorner(QuadMesh& mesh, const opt::Topology& t, CornerIndex v, const Pas
   const auto accept = [&](const Vec3& at) {
     const double excess = excessNear(mesh, around, near, distance(at, start), far);
     if (!(excess < best * (1.0 - 1e-9))) return false;
-    if (opt::scoreAround(mesh, t, v, pass.settings).failures > failuresBefore) return false;
-    if (chordError(mesh) > chordAllowed) return false;
+    const Guards& g = guardsFor();
+    if (opt::scoreAround(mesh, t, v, pass.settings).failures > g.failuresBefore) return false;
+    if (g.chordError(mesh) > g.chordAllowed) return false;
     best = excess;
     return true;
   };
