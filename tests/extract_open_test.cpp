@@ -56,13 +56,15 @@ struct Extraction {
 };
 
 Extraction extractPart(const FeModel& model, Id part, double voxel,
-                       const SheetSettings& sheetSettings = {}) {
+                       const SheetSettings& sheetSettings = {},
+                       double band = VolumeSettings{}.bandWidthVoxels) {
   Extraction result;
   result.original = quadMeshFromModel(model, part);
   result.sheets = buildSheets(model, part, sheetSettings);
   VolumeSettings settings;
   settings.rule = VoxelSizeRule::Explicit;
   settings.voxelSize = voxel;
+  settings.bandWidthVoxels = band;
   result.voxel = voxel;
   const Volume volume = buildVolume(result.sheets, settings);
   result.mesh = extractQuadMesh(volume, {}, &result.stats);
@@ -161,6 +163,39 @@ TEST(ExtractOpen, FoldStaysSharp) {
   }
   EXPECT_LE(worst, 0.1 * x.voxel);
   EXPECT_GT(x.stats.snappedVertices, 0u);
+}
+
+/// Expects the extraction of `model`'s part at `voxel` through a volume of the remesh's band
+/// (kExtractionBandVoxels) to equal, point for point and face for face, the one through a band of
+/// 3 voxels (OpenVDB's default half width).
+void expectSameMeshAsAWiderBand(const FeModel& model, Id part, double voxel) {
+  const Extraction narrow = extractPart(model, part, voxel, {}, kExtractionBandVoxels);
+  const Extraction wide = extractPart(model, part, voxel, {}, 3.0);
+  ASSERT_FALSE(narrow.mesh.faces.empty());
+  EXPECT_EQ(narrow.mesh.points, wide.mesh.points);
+  EXPECT_EQ(narrow.mesh.faces, wide.mesh.faces);
+  ASSERT_EQ(narrow.mesh.constraints.size(), wide.mesh.constraints.size());
+  for (std::size_t i = 0; i < narrow.mesh.constraints.size(); ++i)
+    EXPECT_TRUE(narrow.mesh.constraints[i].role == wide.mesh.constraints[i].role &&
+                narrow.mesh.constraints[i].curve == wide.mesh.constraints[i].curve)
+        << "point " << i;
+}
+
+TEST(ExtractOpen, TheRemeshBandHoldsEverythingTheExtractionReads) {
+  // Holes of one, two and twenty elements (boundary strips), a fold (feature snapping), the
+  // sample part, and the bracket with its bridged neck.
+  expectSameMeshAsAWiderBand(plateModel(16, 1.0,
+                                        [](int i, int j) {
+                                          return (i == 3 && j == 3) ||
+                                                 (i >= 8 && i <= 9 && j == 4) ||
+                                                 (i >= 5 && i <= 9 && j >= 9 && j <= 12);
+                                        }),
+                             1, 1.0);
+  expectSameMeshAsAWiderBand(plateModel(12, 1.0, {}, 6), 1, 1.0);
+  const FeModel rail = readDeck(std::string(VOXREMESH_SOURCE_DIR) + "/tools/samples/hat_rail.k");
+  expectSameMeshAsAWiderBand(rail, rail.shells.front().part, 4.0);
+  VOXREMESH_REQUIRE_SHARED_DECK(path, "bracket.k");
+  expectSameMeshAsAWiderBand(readDeck(path), 4075, 4.5);
 }
 
 TEST(ExtractOpen, SamplePartKeepsItsSixLoops) {

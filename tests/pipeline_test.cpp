@@ -73,6 +73,13 @@ TEST(Pipeline, PlansPartsAndTargetSizes) {
   settings.targetSize = 0;
   settings.volume.bandWidthVoxels = 0;
   EXPECT_THROW(planRemesh(model, settings), SettingError);
+  // A band narrower than the extraction reads (kExtractionBandVoxels), though a volume takes it.
+  settings.volume.bandWidthVoxels = 1.5;
+  EXPECT_NO_THROW(checkVolumeSettings(settings.volume));
+  EXPECT_THROW(planRemesh(model, settings), SettingError);
+  settings.volume = RemeshSettings{}.volume;
+  EXPECT_EQ(settings.volume.bandWidthVoxels, kExtractionBandVoxels);
+  EXPECT_NO_THROW(planRemesh(model, settings));
   EXPECT_EQ(choosePart(model, 20, "deck", "part="), 20);
   EXPECT_THROW(choosePart(model, 0, "deck", "part="), SettingError);
   EXPECT_THROW(choosePart(model, 30, "deck", "part="), std::runtime_error);

@@ -28,7 +28,8 @@
 //   }
 //   SETTINGS = { "size": 4, "voxel": 1.5, "part": 4075, "band": 3, "feature_angle": 30,
 //                "invalid_angle": 60, "format": "k", "criteria": "oem.txt" }
-//              (all optional; format: of the output)
+//              (all optional; format: of the output; band: voxels each side, default 3, for
+//              remesh jobs kExtractionBandVoxels (extract.h), the least they take)
 //   remesh jobs: size is the target element size (default: per part its median edge), part the
 //   one part to remesh (default: all parts with shells), voxel is refused, criteria a quality
 //   criteria file (criteria_file.h; relative to the job file's folder) for the optimisation,

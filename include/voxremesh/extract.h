@@ -32,6 +32,12 @@
 
 namespace voxremesh {
 
+/// The narrow band, in voxels each side, that holds every distance the extraction reads: a cell
+/// the surface passes through has its corners within sqrt(3) voxels of it, and a cell with an
+/// inactive corner gets no vertex (see the top of the file). remeshDeck builds its volumes with
+/// this band (RemeshSettings::volume); a wider one gives the same mesh at a higher cost.
+inline constexpr double kExtractionBandVoxels = 2.0;
+
 /// Settings of the extraction stage.
 struct ExtractSettings {
   /// Rebuild the strip between the dual mesh and the volume's boundary loops (paper Fig. 7).

@@ -34,6 +34,14 @@
 namespace voxremesh {
 
 /// Settings of remeshing a deck. Every field has a documented default.
+/// VolumeSettings' defaults (volume.h) with the band the extraction reads,
+/// kExtractionBandVoxels: the volumes remeshDeck builds serve the extraction only.
+inline VolumeSettings remeshVolumeSettings() {
+  VolumeSettings settings;
+  settings.bandWidthVoxels = kExtractionBandVoxels;
+  return settings;
+}
+
 struct RemeshSettings {
   /// Target element size in model units; 0 (the default) means one size for the whole deck: the
   /// median edge length of all its shells (deckTargetSize). Negative or non-finite is refused.
@@ -56,9 +64,10 @@ struct RemeshSettings {
   std::vector<Id> parts;
   /// Feature and corner angles (sheets.h defaults: 45 and 30 degrees).
   SheetSettings sheets;
-  /// Band, invalid angle, tie tolerance and memory limit of the volumes (volume.h defaults). The
-  /// voxel size rule and size are set per part from the target size.
-  VolumeSettings volume;
+  /// Band, invalid angle, tie tolerance and memory limit of the volumes (remeshVolumeSettings:
+  /// volume.h's defaults with a band of kExtractionBandVoxels, the least refused). The voxel size
+  /// rule and size are set per part from the target size.
+  VolumeSettings volume = remeshVolumeSettings();
   /// Extraction settings (extract.h defaults).
   ExtractSettings extract;
   /// Quad optimisation after extraction (optimize.h); off leaves the extracted mesh as it is.

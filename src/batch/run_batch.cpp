@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <mutex>
 #include <new>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -31,7 +32,8 @@ namespace {
 struct JobSettings {
   std::optional<double> size, voxel;
   Id part = 0;
-  double band = 3.0, featureAngle = 45.0, invalidAngle = 60.0;
+  std::optional<double> band;  ///< unset: VolumeSettings' band, remeshVolumeSettings' for remesh
+  double featureAngle = 45.0, invalidAngle = 60.0;
   std::optional<DeckFormat> format;
   std::optional<std::string> criteria;  ///< a criteria file (criteria_file.h), remesh jobs
 };
@@ -82,7 +84,7 @@ void runVoxelize(const BatchJob& job, const JobSettings& settings, BatchResult& 
   const FeModel model = readDeck(job.input);
   const Id part = choosePart(model, settings.part, job.input.string(), "the setting \"part\"");
   VolumeSettings volume;
-  volume.bandWidthVoxels = settings.band;
+  if (settings.band) volume.bandWidthVoxels = *settings.band;
   volume.invalidAngleDeg = settings.invalidAngle;
   if (settings.voxel) {
     volume.rule = VoxelSizeRule::Explicit;
@@ -122,7 +124,7 @@ void runRemesh(const BatchJob& job, const JobSettings& settings, BatchResult& re
   if (settings.size) remesh.targetSize = *settings.size;
   if (settings.part) remesh.parts = {settings.part};
   remesh.sheets.featureAngleDeg = settings.featureAngle;
-  remesh.volume.bandWidthVoxels = settings.band;
+  if (settings.band) remesh.volume.bandWidthVoxels = *settings.band;
   remesh.volume.invalidAngleDeg = settings.invalidAngle;
   if (settings.criteria) readCriteriaFile(*settings.criteria, remesh.optimizeSettings.quality);
   const RemeshReport report = remeshDeck(deck, remesh);

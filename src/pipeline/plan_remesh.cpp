@@ -6,6 +6,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "pipeline/remesh_part.h"
 #include "voxremesh/errors.h"
 #include "voxremesh/pipeline.h"
 
@@ -100,6 +101,12 @@ std::vector<PartPlan> planRemesh(const FeModel& model, const RemeshSettings& set
   if (settings.threads < 0)
     throw SettingError("the number of threads must be 0 (all cores) or more");
   checkVolumeSettings(settings.volume);
+  if (!(settings.volume.bandWidthVoxels >= kExtractionBandVoxels))
+    throw SettingError("the band of the remesh volumes must be at least " +
+                       pipeline::formatNumber(kExtractionBandVoxels) +
+                       " voxels each side (the extraction reads the distance at cell corners "
+                       "up to sqrt(3) voxels from the surface); got " +
+                       pipeline::formatNumber(settings.volume.bandWidthVoxels));
   const std::vector<Id> withShells = shellPartIds(model);
   std::vector<Id> chosen = settings.parts.empty() ? withShells : settings.parts;
   std::sort(chosen.begin(), chosen.end());
