@@ -53,7 +53,8 @@ constexpr double kCoincidentShare = 1e-3;
 /// node with it (so that buildSheets still finds the seams), and the nodes they use: sheets and
 /// volumes then cost what the part costs, not what the deck costs. A part's own coincident nodes
 /// are merged in its model (mergeCoincidentNodes, within kCoincidentShare of its target size);
-/// `mergedNodes` receives per plan how many.
+/// `mergedNodes` receives per plan how many. The models are filled in parallel (in the caller's
+/// task arena), each on its own.
 std::vector<FeModel> partModels(const FeModel& deck, const std::vector<PartPlan>& plans,
                                 std::vector<std::size_t>& mergedNodes) {
   std::unordered_map<Id, std::size_t> planOf;
@@ -83,7 +84,7 @@ std::vector<FeModel> partModels(const FeModel& deck, const std::vector<PartPlan>
     for (const std::size_t plan : targets) models[plan].shells.push_back(shell);
   }
   mergedNodes.assign(plans.size(), 0);
-  for (std::size_t i = 0; i < plans.size(); ++i) {
+  tbb::parallel_for(std::size_t(0), plans.size(), [&](std::size_t i) {
     FeModel& model = models[i];
     std::unordered_set<Id> used;
     for (const Shell& shell : model.shells)
@@ -92,7 +93,7 @@ std::vector<FeModel> partModels(const FeModel& deck, const std::vector<PartPlan>
           model.nodes.push_back(deck.nodes[nodeIndex.at(shell.nodes[static_cast<std::size_t>(c)])]);
     mergedNodes[i] = pipeline::mergeCoincidentNodes(model, plans[i].part,
                                                     kCoincidentShare * plans[i].targetSize);
-  }
+  });
   return models;
 }
 
@@ -442,7 +443,9 @@ RemeshReport remeshDeck(FeModel& deck, const RemeshSettings& asked,
     tell("extract", plans[i].part, true);
   }
   std::vector<std::size_t> mergedNodes;
-  const std::vector<FeModel> models = partModels(deck, plans, mergedNodes);
+  std::vector<FeModel> partModelsBuilt;
+  arena.execute([&] { partModelsBuilt = partModels(deck, plans, mergedNodes); });
+  const std::vector<FeModel> models = std::move(partModelsBuilt);
   const std::vector<std::vector<std::size_t>> neighbours = planNeighbours(models, plans);
   std::vector<double> ownSize;  // each plan's target size before the halving passes
   for (const PartPlan& plan : plans) ownSize.push_back(plan.targetSize);
