@@ -33,7 +33,6 @@
 
 namespace voxremesh {
 
-/// Settings of remeshing a deck. Every field has a documented default.
 /// VolumeSettings' defaults (volume.h) with the band the extraction reads,
 /// kExtractionBandVoxels: the volumes remeshDeck builds serve the extraction only.
 inline VolumeSettings remeshVolumeSettings() {
@@ -42,6 +41,7 @@ inline VolumeSettings remeshVolumeSettings() {
   return settings;
 }
 
+/// Settings of remeshing a deck. Every field has a documented default.
 struct RemeshSettings {
   /// Target element size in model units; 0 (the default) means one size for the whole deck: the
   /// median edge length of all its shells (deckTargetSize). Negative or non-finite is refused.
