@@ -14,9 +14,9 @@
 
 #include "optimize/chord_error.h"
 #include "optimize/face_score.h"
-#include "optimize/independent_classes.h"
 #include "optimize/mesh_topology.h"
 #include "optimize/point_search.h"
+#include "optimize/search_engine.h"
 #include "optimize/steps.h"
 #include "voxremesh/optimize.h"
 
@@ -170,12 +170,6 @@ bool pullCorner(QuadMesh& mesh, const opt::Topology& t, CornerIndex v, const Pas
   return opt::compassSearch(mesh, v, directions, edge, 0.06, 3, place, accept);
 }
 
-/// A face nearest to a far sample, and its corners that may move, the nearest to the sample first.
-struct PullCandidate {
-  std::uint32_t face = 0;
-  std::vector<CornerIndex> corners;
-};
-
 /// What the passes of both shares read: the original's samples, the mesh's topology (the pulls
 /// move points only), the mesh as a surface to query, and the closest point of the mesh to each
 /// sample, current while no point has moved since it was found.
@@ -187,115 +181,100 @@ struct FitState {
   bool hitsCurrent = false;
 };
 
-/// Up to maxPasses passes of the pulls towards the samples of the original farther than `far`
-/// from the mesh (see fitFarOriginalPoints); returns the number of points pulled.
-std::size_t pullTowardsFarSamples(QuadMesh& mesh, const ReferenceSurface& original,
-                                  const QualitySettings& settings, int maxPasses, double far,
-                                  FitState& fit) {
-  const std::vector<Vec3>& samples = fit.samples;
-  const opt::Topology& t = fit.topology;
-  std::vector<SurfaceHit>& hits = fit.hits;
-  std::size_t pulled = 0;
-  // The pass in which a face's corners were last searched in vain, and in which a point was last
-  // among the corners of a moved point's faces: a face searched in vain is not searched again
-  // while none of its corners has changed since.
-  std::vector<int> vainPass(mesh.faces.size(), -1), changedPass(mesh.points.size(), -1);
-  for (int pass = 0; pass < maxPasses; ++pass) {
-    // The closest point of the mesh to each sample, unless no point has moved since they were
-    // found, with a hint (the same answers, found faster): the first time the answer for the
-    // sample before (a deck's nodes come in runs of near ones), then the previous answer.
-    if (!fit.hitsCurrent) {
-      const bool first = hits.empty();
-      if (!first) fit.surface.movePoints(mesh.points);
-      const ReferenceSurface& current = fit.surface;
-      hits.resize(samples.size());
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 256),
-                        [&](const tbb::blocked_range<std::size_t>& r) {
-                          std::uint32_t hint = kNoCorner;
-                          for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                            hits[i] = current.closestPoint(samples[i], first ? hint : hits[i].face);
-                            hint = hits[i].face;
-                          }
-                        });
-      fit.hitsCurrent = true;
-    }
-    // The samples each face is closest to (for the check of a pull's faces), and the far ones,
-    // farthest first.
-    const SamplesByFace nearestTo(hits, mesh.faces.size());
+/// The engine's items that pull the corners of a face nearest to samples of the original farther
+/// than `far` from the mesh (see fitFarOriginalPoints): one item per such face and pass, in the
+/// order of the farthest sample of each (it stands for the rest). Points round a moved one wait
+/// for the next pass (the hits there are stale).
+struct FarSamplePulls {
+  struct Item {
+    std::uint32_t key;                 ///< the face
+    opt::PointAccess access;           ///< the points of its movable corners' faces; those corners
+    std::vector<CornerIndex> depends;  ///< its corners
+    std::vector<CornerIndex>
+        corners;  ///< its corners that may move, the nearest to the sample first
+  };
+  QuadMesh& mesh;
+  const ReferenceSurface& original;
+  const QualitySettings& settings;
+  double far = 0.0;
+  FitState& fit;
+  std::optional<SamplesByFace> nearestTo;  ///< the pass's
+
+  /// The closest point of the mesh to each sample, unless no point has moved since they were
+  /// found, with a hint (the same answers, found faster): the first time the answer for the sample
+  /// before (a deck's nodes come in runs of near ones), then the previous answer.
+  void updateHits() {
+    if (fit.hitsCurrent) return;
+    const bool first = fit.hits.empty();
+    if (!first) fit.surface.movePoints(mesh.points);
+    const ReferenceSurface& current = fit.surface;
+    std::vector<SurfaceHit>& hits = fit.hits;
+    hits.resize(fit.samples.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, fit.samples.size(), 256),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        std::uint32_t hint = kNoCorner;
+                        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                          hits[i] =
+                              current.closestPoint(fit.samples[i], first ? hint : hits[i].face);
+                          hint = hits[i].face;
+                        }
+                      });
+    fit.hitsCurrent = true;
+  }
+
+  std::vector<Item> items(int /*pass*/) {
+    updateHits();
+    const std::vector<SurfaceHit>& hits = fit.hits;
+    const opt::Topology& t = fit.topology;
+    nearestTo.emplace(hits, mesh.faces.size());
     std::vector<std::uint32_t> farSamples;
     for (std::uint32_t i = 0; i < hits.size(); ++i)
       if (hits[i].distance > far) farSamples.push_back(i);
     std::stable_sort(farSamples.begin(), farSamples.end(), [&](std::uint32_t a, std::uint32_t b) {
       return hits[a].distance > hits[b].distance;
     });
-    // One search per face and pass, in the order of the farthest sample of each (it stands for
-    // the rest), unless searched in vain with nothing changed since.
-    std::vector<PullCandidate> candidates;
-    std::vector<opt::PointAccess> access;
-    std::vector<std::uint8_t> searched(mesh.faces.size(), 0);
+    std::vector<Item> items;
+    std::vector<std::uint8_t> taken(mesh.faces.size(), 0);
     for (const std::uint32_t i : farSamples) {
       const std::uint32_t f = hits[i].face;
-      if (searched[f]) continue;
-      searched[f] = 1;
+      if (taken[f]) continue;
+      taken[f] = 1;
       const Face& face = mesh.faces[f];
-      const int n = cornerCount(face);
-      if (vainPass[f] >= 0 && std::all_of(face.begin(), face.begin() + n, [&](CornerIndex c) {
-            return changedPass[c] < vainPass[f];
-          }))
-        continue;
-      PullCandidate c{f, {}};
-      opt::PointAccess a;
-      for (int k = 0; k < n; ++k) {
-        const CornerIndex v = face[std::size_t(k)];
+      Item item{f, {}, {face.begin(), face.begin() + cornerCount(face)}, {}};
+      for (const CornerIndex v : item.depends) {
         if (opt::roleOf(mesh, v) != PointRole::Free || t.boundary[v]) continue;
-        c.corners.push_back(v);
-        a.writes.push_back(v);
+        item.corners.push_back(v);
+        item.access.writes.push_back(v);
         for (const Face& g : facesAround(mesh, t, v))
-          a.reads.insert(a.reads.end(), g.begin(), g.begin() + cornerCount(g));
+          item.access.reads.insert(item.access.reads.end(), g.begin(), g.begin() + cornerCount(g));
       }
-      std::stable_sort(c.corners.begin(), c.corners.end(), [&](CornerIndex x, CornerIndex y) {
-        return distance(mesh.points[x], samples[i]) < distance(mesh.points[y], samples[i]);
+      std::stable_sort(item.corners.begin(), item.corners.end(), [&](CornerIndex x, CornerIndex y) {
+        return distance(mesh.points[x], fit.samples[i]) < distance(mesh.points[y], fit.samples[i]);
       });
-      candidates.push_back(std::move(c));
-      access.push_back(std::move(a));
+      items.push_back(std::move(item));
     }
-    // The faces in classes that do not see each other's moves, each class in parallel. A face
-    // with a corner round a point moved in this pass waits for the next (the hits there are
-    // stale).
-    const PassState state{original, settings, samples, hits, nearestTo, far};
-    std::vector<std::uint8_t> locked(mesh.points.size(), 0);
-    std::size_t passPulled = 0;
-    opt::runInClasses(
-        access, mesh.points.size(),
-        [&](std::uint32_t c) {
-          const Face& face = mesh.faces[candidates[c].face];
-          return std::none_of(face.begin(), face.begin() + cornerCount(face),
-                              [&](CornerIndex v) { return locked[v] != 0; });
-        },
-        [] {},
-        [&](std::uint32_t c) {
-          for (const CornerIndex v : candidates[c].corners)
-            if (pullCorner(mesh, t, v, state)) return v;
-          return kNoCorner;
-        },
-        [&](std::uint32_t c, CornerIndex v) {
-          if (v == kNoCorner) {
-            vainPass[candidates[c].face] = pass;
-            return;
-          }
-          for (const Face& g : facesAround(mesh, t, v))
-            for (int k = 0; k < cornerCount(g); ++k) {
-              locked[g[std::size_t(k)]] = 1;
-              changedPass[g[std::size_t(k)]] = pass;
-            }
-          ++passPulled;
-        });
-    pulled += passPulled;
-    if (passPulled == 0) break;
-    fit.hitsCurrent = false;
+    return items;
   }
-  return pulled;
-}
+  void startClass() {}
+  /// The first of the item's corners a search moves, or kNoCorner.
+  CornerIndex tryItem(const Item& item) {
+    const PassState state{original, settings, fit.samples, fit.hits, *nearestTo, far};
+    for (const CornerIndex v : item.corners)
+      if (pullCorner(mesh, fit.topology, v, state)) return v;
+    return kNoCorner;
+  }
+  /// The corners of the moved point's faces.
+  std::vector<CornerIndex> apply(const Item& /*item*/, CornerIndex moved) const {
+    std::vector<CornerIndex> changed;
+    if (moved == kNoCorner) return changed;
+    for (const Face& g : facesAround(mesh, fit.topology, moved))
+      changed.insert(changed.end(), g.begin(), g.begin() + cornerCount(g));
+    return changed;
+  }
+  void endRound(std::size_t pulled) {
+    if (pulled > 0) fit.hitsCurrent = false;
+  }
+};
 
 }  // namespace
 
@@ -314,8 +293,10 @@ std::size_t fitFarOriginalPoints(QuadMesh& mesh, const ReferenceSurface& origina
       settings.maxDistanceFactor * lengthScale(settings, Criterion::Distance, settings.targetSize);
   FitState fit{original.usedPoints(), cache.topology(mesh), ReferenceSurface(mesh), {}, false};
   std::size_t pulled = 0;
-  for (const double share : {kFarShare, kNearShare})
-    pulled += pullTowardsFarSamples(mesh, original, settings, maxPasses, share * limit, fit);
+  for (const double share : {kFarShare, kNearShare}) {
+    FarSamplePulls kind{mesh, original, settings, share * limit, fit, std::nullopt};
+    pulled += opt::runEngineRounds(maxPasses, mesh.points.size(), {true, true}, kind);
+  }
   return pulled;
 }
 

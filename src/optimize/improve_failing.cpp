@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "optimize/independent_classes.h"
 #include "optimize/point_search.h"
+#include "optimize/search_engine.h"
 #include "optimize/steps.h"
 #include "voxremesh/optimize.h"
 
@@ -36,6 +36,49 @@ std::vector<CornerIndex> pointsOfFailingFaces(const QuadMesh& mesh, const opt::T
   return points;
 }
 
+/// The engine's items that move one point of a failing face each (improvePoint, in place).
+/// Points that share no face do not see each other's moves in their faces' scores: one class is
+/// searched in parallel. Their fold checks also read the faces across their faces' edges, which
+/// may hold another point of the class: they read the positions from before the class (`frozen`),
+/// so that the result does not depend on the thread count.
+struct FailingPointSearches {
+  struct Item {
+    CornerIndex key;                   ///< the point searched
+    opt::PointAccess access;           ///< the points of its faces; itself
+    std::vector<CornerIndex> depends;  ///< the points of its faces
+  };
+  QuadMesh& mesh;
+  const opt::Topology& topology;
+  opt::MeshCache& cache;
+  const ReferenceSurface& original;
+  const QualitySettings& settings;
+  std::vector<std::vector<Vec3>> fixedOnCurve;
+  std::vector<PolylineIndex> curves;
+  std::vector<Vec3> frozen;
+
+  std::vector<Item> items(int /*round*/) {
+    std::vector<Item> items;
+    for (const CornerIndex v : pointsOfFailingFaces(mesh, topology, cache.failures(mesh))) {
+      Item item{v, {}, {}};
+      for (const std::uint32_t* f = topology.facesBegin(v); f != topology.facesEnd(v); ++f)
+        for (int k = 0; k < cornerCount(mesh.faces[*f]); ++k)
+          item.depends.push_back(mesh.faces[*f][std::size_t(k)]);
+      item.access = {item.depends, {v}};
+      items.push_back(std::move(item));
+    }
+    return items;
+  }
+  void startClass() { frozen = mesh.points; }
+  bool tryItem(const Item& item) {
+    return improvePoint(mesh, topology, original, settings, fixedOnCurve, curves, item.key, 0.01, 8,
+                        &frozen);
+  }
+  std::vector<CornerIndex> apply(const Item& item, bool moved) {
+    return moved ? std::vector<CornerIndex>{item.key} : std::vector<CornerIndex>{};
+  }
+  void endRound(std::size_t /*changed*/) {}
+};
+
 }  // namespace
 
 std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& original,
@@ -48,54 +91,18 @@ std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& origi
     throw std::invalid_argument("improveFailingElements: targetSize must be > 0");
   checkQualitySettings(settings);
   opt::checkMesh(mesh);
-  const opt::Topology& topology = cache.topology(mesh);
-  const std::vector<std::vector<Vec3>> fixedOnCurve = fixedPointsOnCurves(mesh);
-  const std::vector<PolylineIndex> curves = opt::indexCurves(mesh);
-  std::size_t moved = 0;
-  // A point searched in vain is not searched again until a point of its faces has moved
-  // (SearchRecord); stamps count the classes processed. The classes are formed before the
-  // skipping, so the order of the searches, and with it the result, is the same as without it.
-  opt::SearchRecord record(mesh.points.size());
-  std::uint32_t stamp = 0;
-  for (int sweep = 0; sweep < sweeps; ++sweep) {
-    // Points that share no face do not see each other's moves in their faces' scores: the points
-    // of one class are improved in parallel, the classes one after another. Their fold checks
-    // also read the faces across their faces' edges, which may hold another point of the class:
-    // they read the positions from before the class (`frozen`), so the result does not depend on
-    // the thread count.
-    const std::vector<CornerIndex> failingPoints =
-        pointsOfFailingFaces(mesh, topology, cache.failures(mesh));
-    std::vector<opt::PointAccess> access(failingPoints.size());
-    for (std::size_t i = 0; i < failingPoints.size(); ++i) {
-      const CornerIndex v = failingPoints[i];
-      for (const std::uint32_t* f = topology.facesBegin(v); f != topology.facesEnd(v); ++f)
-        for (int k = 0; k < cornerCount(mesh.faces[*f]); ++k)
-          access[i].reads.push_back(mesh.faces[*f][std::size_t(k)]);
-      access[i].writes = {v};
-    }
-    std::size_t movedThisSweep = 0;
-    std::vector<Vec3> frozen;
-    opt::runInClasses(
-        access, mesh.points.size(),
-        [&](std::uint32_t i) {
-          return !record.unchangedSinceSearch(mesh, topology, failingPoints[i]);
-        },
-        [&] {
-          ++stamp;
-          frozen = mesh.points;
-        },
-        [&](std::uint32_t i) {
-          return improvePoint(mesh, topology, original, settings, fixedOnCurve, curves,
-                              failingPoints[i], 0.01, 8, &frozen);
-        },
-        [&](std::uint32_t i, bool movedNow) {
-          movedThisSweep += movedNow;
-          record.note(failingPoints[i], movedNow, stamp);
-        });
-    moved += movedThisSweep;
-    if (movedThisSweep == 0) break;
-  }
-  return moved;
+  FailingPointSearches kind{mesh,
+                            cache.topology(mesh),
+                            cache,
+                            original,
+                            settings,
+                            fixedPointsOnCurves(mesh),
+                            opt::indexCurves(mesh),
+                            {}};
+  // A point's search sees the moves of the classes before its own within the sweep; the classes
+  // are formed before the record drops any point, so that the order of the searches, and with it
+  // the result, is the same as without the record.
+  return opt::runEngineRounds(sweeps, mesh.points.size(), {false, false}, kind);
 }
 
 std::size_t improveFailingElements(QuadMesh& mesh, const ReferenceSurface& original,

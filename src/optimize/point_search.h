@@ -8,6 +8,7 @@
 
 #include "optimize/face_score.h"
 #include "optimize/mesh_topology.h"
+#include "optimize/search_engine.h"
 #include "voxremesh/quality.h"
 #include "voxremesh/reference_surface.h"
 
@@ -59,29 +60,18 @@ bool compassSearch(QuadMesh& mesh, CornerIndex v, const std::array<Vec3, 8>& dir
   return position != start;
 }
 
-/// What the searches of points have found so far, by stamp (a count the caller raises between
-/// searches that may see each other's moves; 0: never): a search depends only on the positions of
-/// the points of the point's faces, so one that left its point in place would do so again until
-/// one of those moves, and is skipped with the same result.
-struct SearchRecord {
-  std::vector<std::uint32_t> movedAt;   ///< per point, the stamp at which it last moved
-  std::vector<std::uint32_t> stayedAt;  ///< per point, the stamp of a search in vain since (or 0)
-  explicit SearchRecord(std::size_t points = 0) : movedAt(points, 0), stayedAt(points, 0) {}
-  /// Whether v was searched in vain and no point of its faces (topology `t` of `mesh`) has moved
-  /// since.
-  bool unchangedSinceSearch(const QuadMesh& mesh, const Topology& t, CornerIndex v) const {
-    if (stayedAt[v] == 0) return false;
-    for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f)
-      for (int k = 0; k < cornerCount(mesh.faces[*f]); ++k)
-        if (movedAt[mesh.faces[*f][std::size_t(k)]] >= stayedAt[v]) return false;
-    return true;
-  }
-  /// Notes the outcome of a search of v at `stamp`.
-  void note(CornerIndex v, bool moved, std::uint32_t stamp) {
-    if (moved) movedAt[v] = stamp;
-    stayedAt[v] = moved ? 0 : stamp;
-  }
-};
+/// Whether the search of v was in vain by `record` and no point of v's faces (topology `t` of
+/// `mesh`) has changed since: a search depends only on those points' positions, so it would
+/// again leave v in place.
+inline bool searchUnchangedSinceVain(const VainTries<CornerIndex>& record, const QuadMesh& mesh,
+                                     const Topology& t, CornerIndex v) {
+  const std::uint32_t at = record.vainAt(v);
+  if (at == 0) return false;
+  for (const std::uint32_t* f = t.facesBegin(v); f != t.facesEnd(v); ++f)
+    for (int k = 0; k < cornerCount(mesh.faces[*f]); ++k)
+      if (record.changedSince(mesh.faces[*f][std::size_t(k)], at)) return false;
+  return true;
+}
 
 /// The summed score of the faces around v (topology `t` of `mesh`).
 Score scoreAround(const QuadMesh& mesh, const Topology& t, CornerIndex v,

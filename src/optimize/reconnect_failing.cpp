@@ -5,7 +5,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <map>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
@@ -14,8 +13,8 @@
 
 #include "optimize/chord_error.h"
 #include "optimize/edge_polygon.h"
-#include "optimize/independent_classes.h"
 #include "optimize/point_search.h"
+#include "optimize/search_engine.h"
 #include "optimize/steps.h"
 #include "voxremesh/errors.h"
 #include "voxremesh/optimize.h"
@@ -59,13 +58,13 @@ struct Edit {
 /// A neighbourhood after an edit: its own small mesh, and the state of the pattern searches of its
 /// points (kept from the first sweep to the next ones).
 struct Trial {
-  QuadMesh mesh;                      ///< points, constraints, faces (curves left empty)
-  std::vector<CornerIndex> global;    ///< global index per point of `mesh`
-  opt::Topology topology;             ///< of `mesh`
-  std::vector<CornerIndex> searched;  ///< local indexes of the points searched, ascending
-  opt::SearchRecord searches;         ///< per point, the searches so far (SearchRecord)
-  std::uint32_t stamp = 0;            ///< raised as each search is noted
-  bool converged = false;             ///< a whole sweep moved no point
+  QuadMesh mesh;                            ///< points, constraints, faces (curves left empty)
+  std::vector<CornerIndex> global;          ///< global index per point of `mesh`
+  opt::Topology topology;                   ///< of `mesh`
+  std::vector<CornerIndex> searched;        ///< local indexes of the points searched, ascending
+  opt::VainTries<CornerIndex> searches{0};  ///< per point, its searches in vain so far
+  std::uint32_t stamp = 0;                  ///< raised as each search is noted
+  bool converged = false;                   ///< a whole sweep moved no point
   opt::Score score;
   double chord = 0.0;     ///< chordError of its faces
   std::size_t folds = 0;  ///< faces of `mesh` folded against their neighbours (foldedFaces)
@@ -157,7 +156,7 @@ Trial buildTrial(const QuadMesh& mesh, const opt::Topology& t, const Neighbourho
     if ((!edit.merge || v != edit.merge->remove) && opt::searchable(mesh, t, v))
       trial.searched.push_back(local(v));
   trial.split = edit.split;
-  trial.searches = opt::SearchRecord(trial.global.size());
+  trial.searches = opt::VainTries<CornerIndex>(trial.global.size());
   return trial;
 }
 
@@ -167,14 +166,17 @@ void searchTrial(Trial& trial, const ReferenceSurface& original, const QualitySe
                  const std::vector<std::vector<Vec3>>& fixedOnCurve,
                  const std::vector<PolylineIndex>& curves, int sweeps) {
   const opt::Topology& t = trial.topology;
-  // A point searched in vain is skipped until a point of its faces moves (SearchRecord).
+  // A point searched in vain is skipped until a point of its faces moves.
   for (int sweep = 0; sweep < sweeps && !trial.converged; ++sweep) {
     bool moved = false;
     for (const CornerIndex v : trial.searched) {
-      if (trial.searches.unchangedSinceSearch(trial.mesh, t, v)) continue;
+      if (opt::searchUnchangedSinceVain(trial.searches, trial.mesh, t, v)) continue;
       const bool movedNow = opt::improvePoint(trial.mesh, t, original, settings, fixedOnCurve,
                                               curves, v, kTrialSmallestStep, kTrialMovesPerStep);
-      trial.searches.note(v, movedNow, ++trial.stamp);
+      if (movedNow)
+        trial.searches.noteChanged(v, ++trial.stamp);
+      else
+        trial.searches.noteVain(v, ++trial.stamp);
       moved = moved || movedNow;
     }
     trial.converged = !moved;
@@ -468,6 +470,85 @@ std::optional<Trial> bestTrialAt(const QuadMesh& mesh, const opt::Topology& t, c
   return std::move(trials[*best]);
 }
 
+/// The engine's items that try local edits round a failing face each (bestTrialAt). The first
+/// `rounds` rounds take every failing face, as many more the faces with a degenerate corner only:
+/// no acceptance allows one, while it allows a share of other failures. Point indexes stay as they
+/// are until the end (merged points are left unused meanwhile), so that the engine's record holds
+/// across rounds; a round's removed faces are erased after it.
+struct FailingFaceTries {
+  struct Item {
+    Face key;                          ///< the face's corners
+    opt::PointAccess access;           ///< its neighbourhood's points, read and changed
+    std::vector<CornerIndex> depends;  ///< its neighbourhood's points
+    Candidate candidate;
+  };
+  QuadMesh& mesh;
+  opt::MeshCache& cache;
+  const TryContext& context;
+  int rounds = 0;
+  double maxTriangleShare = 0.0;
+  const opt::Topology* topology = nullptr;  ///< the round's
+  std::vector<std::uint8_t> deleted;        ///< the round's removed faces
+  std::size_t faces = 0, triangles = 0;     ///< the mesh's, as the round's changes are applied
+  bool splitQuads = false;                  ///< quads may be split this round
+
+  /// Whether a change adding `moreFaces` faces and `moreTriangles` triangles keeps the triangle
+  /// share at or under maxTriangleShare.
+  bool splitFits(std::size_t moreFaces, std::size_t moreTriangles) const {
+    return double(triangles + moreTriangles) <= maxTriangleShare * double(faces + moreFaces) + 1e-9;
+  }
+
+  std::vector<Item> items(int round) {
+    const std::uint32_t degenerate = 1u << unsigned(Criterion::DegenerateCorner);
+    const std::uint32_t criteriaTried = round < rounds ? ~0u : degenerate;
+    topology = &cache.topology(mesh);
+    const std::vector<std::uint32_t>& failures = cache.failures(mesh);
+    std::vector<Item> failing;
+    for (std::uint32_t f = 0; f < mesh.faces.size(); ++f)
+      if ((failures[f] & criteriaTried) != 0)
+        failing.push_back(Item{mesh.faces[f], {}, {}, Candidate{f, failures[f], {}}});
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, failing.size(), 16),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                          Item& item = failing[i];
+                          item.candidate.neighbourhood =
+                              neighbourhoodOf(mesh, *topology, item.candidate.face);
+                          item.depends = item.candidate.neighbourhood.allPoints;
+                          item.access = {item.depends, item.depends};
+                        }
+                      });
+    deleted.assign(mesh.faces.size(), 0);
+    faces = mesh.faces.size();
+    triangles = triangleCount(mesh.faces);
+    splitQuads = maxTriangleShare > 0.0 && splitFits(1, 2);
+    return failing;
+  }
+  void startClass() {}
+  std::optional<Trial> tryItem(const Item& item) const {
+    return bestTrialAt(mesh, *topology, item.candidate, context, splitQuads);
+  }
+  /// Applies the best try, unless it is a split the triangle share no longer allows.
+  std::vector<CornerIndex> apply(const Item& item, std::optional<Trial> result) {
+    const Neighbourhood& n = item.candidate.neighbourhood;
+    if (!result) return {};
+    const std::size_t trialTriangles = triangleCount(result->mesh.faces);
+    std::size_t nTriangles = 0;
+    for (const std::uint32_t g : n.faces) nTriangles += cornerCount(mesh.faces[g]) == 3;
+    if (result->split &&
+        !splitFits(result->mesh.faces.size() - n.faces.size(), trialTriangles - nTriangles))
+      return {};
+    faces += result->mesh.faces.size();
+    faces -= n.faces.size();
+    triangles += trialTriangles;
+    triangles -= nTriangles;
+    applyTrial(mesh, n, *result, deleted);
+    return n.allPoints;
+  }
+  void endRound(std::size_t changed) {
+    if (changed > 0) opt::eraseFaces(mesh, deleted);
+  }
+};
+
 }  // namespace
 
 std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& original,
@@ -475,100 +556,25 @@ std::size_t reconnectFailingFaces(QuadMesh& mesh, const ReferenceSurface& origin
                                   const ReconnectSettings& reconnect, opt::MeshCache& cache) {
   if (original.empty())
     throw std::invalid_argument("reconnectFailingFaces: the original surface is empty");
-  const int maxRounds = reconnect.rounds;
-  const double maxTriangleShare = reconnect.maxTriangleShare;
-  if (maxRounds < 0 || reconnect.sweeps < 0)
+  if (reconnect.rounds < 0 || reconnect.sweeps < 0)
     throw std::invalid_argument("reconnectFailingFaces: negative round or sweep count");
   if (!(settings.targetSize > 0.0))
     throw std::invalid_argument("reconnectFailingFaces: targetSize must be > 0");
   checkQualitySettings(settings);
   opt::checkMesh(mesh);
+  if (!(reconnect.maxTriangleShare >= 0.0 && reconnect.maxTriangleShare <= 1.0))
+    throw SettingError("reconnectFailingFaces: triangle share " +
+                       std::to_string(reconnect.maxTriangleShare) + " is outside 0 .. 1");
   const std::vector<std::vector<Vec3>> fixedOnCurve = opt::fixedPointsOnCurves(mesh);
   const std::vector<PolylineIndex> curves = opt::indexCurves(mesh);
-  if (!(maxTriangleShare >= 0.0 && maxTriangleShare <= 1.0))
-    throw SettingError("reconnectFailingFaces: triangle share " + std::to_string(maxTriangleShare) +
-                       " is outside 0 .. 1");
   const TryContext context{original, settings,        fixedOnCurve,
                            curves,   reconnect.edits, reconnect.sweeps};
-  std::size_t changed = 0;
-  // Point indexes stay as they are until the end (merged points are left unused meanwhile), so
-  // that the stamps of the tries and of the changes per point hold across rounds. A stamp counts
-  // the classes tried.
-  std::map<Face, std::uint32_t> triedAt;
-  std::vector<std::uint32_t> changedAt(mesh.points.size(), 0);
-  std::uint32_t stamp = 0;
-  // After maxRounds over every failing face, as many again over the faces with a degenerate
-  // corner only: no acceptance allows one, while it allows a share of other failures.
-  const std::uint32_t degenerate = 1u << unsigned(Criterion::DegenerateCorner);
-  for (int round = 0; round < 2 * maxRounds; ++round) {
-    const std::uint32_t criteriaTried = round < maxRounds ? ~0u : degenerate;
-    const opt::Topology& t = cache.topology(mesh);
-    const std::vector<std::uint32_t>& failures = cache.failures(mesh);
-    std::vector<Candidate> failing;
-    for (std::uint32_t f = 0; f < mesh.faces.size(); ++f)
-      if ((failures[f] & criteriaTried) != 0) failing.push_back(Candidate{f, failures[f], {}});
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, failing.size(), 16),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t i = r.begin(); i < r.end(); ++i)
-                          failing[i].neighbourhood = neighbourhoodOf(mesh, t, failing[i].face);
-                      });
-    // A face tried in vain before, round a neighbourhood nothing has changed since, would be
-    // tried in vain again: what a try does depends only on the faces and positions there.
-    std::vector<Candidate> candidates;
-    for (Candidate& c : failing) {
-      const auto tried = triedAt.find(mesh.faces[c.face]);
-      const auto& points = c.neighbourhood.allPoints;
-      if (tried == triedAt.end() || std::any_of(points.begin(), points.end(), [&](CornerIndex v) {
-            return changedAt[v] >= tried->second;
-          }))
-        candidates.push_back(std::move(c));
-    }
-    // The classes one after another, the faces of a class in parallel and their results applied
-    // in face order: the result does not depend on the thread count. A face whose neighbourhood
-    // an earlier class changed waits for the next round (its topology is stale).
-    std::vector<std::uint8_t> locked(mesh.points.size(), 0), deleted(mesh.faces.size(), 0);
-    std::size_t roundChanged = 0;
-    // The faces and triangles the mesh has as the trials are applied: a split is applied while
-    // the triangle share stays at or under maxTriangleShare.
-    std::size_t faces = mesh.faces.size(), triangles = triangleCount(mesh.faces);
-    const auto splitFits = [&](std::size_t moreFaces, std::size_t moreTriangles) {
-      return double(triangles + moreTriangles) <=
-             maxTriangleShare * double(faces + moreFaces) + 1e-9;
-    };
-    const bool splitQuads = maxTriangleShare > 0.0 && splitFits(1, 2);
-    std::vector<opt::PointAccess> access;
-    for (const Candidate& c : candidates)
-      access.push_back({c.neighbourhood.allPoints, c.neighbourhood.allPoints});
-    opt::runInClasses(
-        access, mesh.points.size(),
-        [&](std::uint32_t i) {
-          const auto& p = candidates[i].neighbourhood.allPoints;
-          return std::none_of(p.begin(), p.end(), [&](CornerIndex v) { return locked[v] != 0; });
-        },
-        [&] { ++stamp; },
-        [&](std::uint32_t i) { return bestTrialAt(mesh, t, candidates[i], context, splitQuads); },
-        [&](std::uint32_t i, std::optional<Trial> result) {
-          const Neighbourhood& n = candidates[i].neighbourhood;
-          triedAt[mesh.faces[candidates[i].face]] = stamp;
-          if (!result) return;
-          const std::size_t trialTriangles = triangleCount(result->mesh.faces);
-          std::size_t nTriangles = 0;
-          for (const std::uint32_t g : n.faces) nTriangles += cornerCount(mesh.faces[g]) == 3;
-          if (result->split &&
-              !splitFits(result->mesh.faces.size() - n.faces.size(), trialTriangles - nTriangles))
-            return;
-          faces += result->mesh.faces.size();
-          faces -= n.faces.size();
-          triangles += trialTriangles;
-          triangles -= nTriangles;
-          applyTrial(mesh, n, *result, deleted);
-          for (const CornerIndex v : n.allPoints) locked[v] = 1, changedAt[v] = stamp;
-          ++roundChanged;
-        });
-    if (roundChanged == 0) break;
-    changed += roundChanged;
-    opt::eraseFaces(mesh, deleted);
-  }
+  FailingFaceTries kind{
+      mesh, cache, context, reconnect.rounds, reconnect.maxTriangleShare, nullptr, {}, 0, 0, false};
+  // A face whose neighbourhood an earlier class changed waits for the next round (its topology
+  // is stale).
+  const std::size_t changed =
+      opt::runEngineRounds(2 * reconnect.rounds, mesh.points.size(), {true, true}, kind);
   if (changed > 0) eraseUnusedPoints(mesh);
   return changed;
 }
