@@ -72,12 +72,13 @@ struct NearSample {
 /// `faces` of `mesh` after a corner of those faces moved by `moved`: the sum of the squares of
 /// their excess. Infinite when a sample ends up farther than both `far` and its distance before.
 /// A sample whose distance before plus `moved` is within `far` is not measured (no point of the
-/// faces moved farther than `moved`): it stays within.
+/// faces moved farther than `moved`): it stays within. The sum stops once it reaches `enough`
+/// (the caller wants only sums below it).
 double excessNear(const QuadMesh& mesh, const std::vector<Face>& faces,
-                  const std::vector<NearSample>& near, double moved, double far) {
+                  const std::vector<NearSample>& near, double moved, double far, double enough) {
   double excess = 0.0;
   for (const NearSample& s : near) {
-    if (s.before + moved <= far) break;
+    if (s.before + moved <= far || excess >= enough) break;
     // Within `far` a sample adds nothing, whatever its distance: the search stops there.
     const double d = distanceToFaces(mesh, faces, s.nearestFace, s.point, far);
     if (d > std::max(s.before, far)) return std::numeric_limits<double>::infinity();
@@ -159,8 +160,9 @@ bool pullCorner(QuadMesh& mesh, const opt::Topology& t, CornerIndex v, const Pas
     return hit.point;
   };
   const auto accept = [&](const Vec3& at) {
-    const double excess = excessNear(mesh, around, near, distance(at, start), far);
-    if (!(excess < best * (1.0 - 1e-9))) return false;
+    const double enough = best * (1.0 - 1e-9);
+    const double excess = excessNear(mesh, around, near, distance(at, start), far, enough);
+    if (!(excess < enough)) return false;
     const Guards& g = guardsFor();
     if (opt::scoreAround(mesh, t, v, pass.settings).failures > g.failuresBefore) return false;
     if (g.chordError(mesh) > g.chordAllowed) return false;
