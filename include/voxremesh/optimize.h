@@ -127,6 +127,12 @@ CleanupResult cleanUpMesh(QuadMesh& mesh, const CleanupSettings& settings);
 /// Throws std::invalid_argument for targetSize <= 0 or a bad mesh; SettingError for bad settings.
 std::size_t mergeTrianglePairs(QuadMesh& mesh, const QualitySettings& settings);
 
+/// The three searches below (improveFailingElements, fitFarOriginalPoints, reconnectFailingFaces)
+/// are one engine: the same loop of rounds over a worklist, independent items in parallel, and
+/// one record of tries in vain (an item not tried again while the points it depends on are
+/// unchanged); they differ in their kind of item: a point moved, a point pulled towards the
+/// original, a neighbourhood reconnected.
+
 /// Moves the points of failing elements by a pattern search: steps of 0.25 x the point's mean
 /// edge length, halved down to 0.01 x, in eight directions of the tangent plane (the plane normal
 /// to the sum of its faces' normals); Free points are projected on `original` after every step,
