@@ -192,8 +192,8 @@ struct FarSamplePulls {
     std::uint32_t key;                 ///< the face
     opt::PointAccess access;           ///< the points of its movable corners' faces; those corners
     std::vector<CornerIndex> depends;  ///< its corners
-    std::vector<CornerIndex>
-        corners;  ///< its corners that may move, the nearest to the sample first
+    /// Its corners that may move, the nearest to the sample first.
+    std::vector<CornerIndex> corners;
   };
   QuadMesh& mesh;
   const ReferenceSurface& original;

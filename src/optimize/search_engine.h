@@ -82,7 +82,8 @@ struct RoundRules {
 /// Up to `rounds` rounds of the engine over the items of `kind`, until a round changes nothing.
 /// Per round: kind.items(round), the worklist from the mesh as it is, each item with members
 /// `key` (what VainTries records it by), `access` (PointAccess: the points its try reads and
-/// may change) and `depends` (the points whose change makes a try in vain worth making again);
+/// may change; moved out once the classes are formed) and `depends` (the points whose change
+/// makes a try in vain worth making again);
 /// items tried in vain with none of `depends` changed since are not tried. The items in classes
 /// (independentClasses); as a class comes up, kind.startClass(); kind.tryItem(item) of its
 /// items in parallel (it must read only the item's points and what startClass and apply set);
@@ -107,9 +108,10 @@ std::size_t runEngineRounds(int rounds, std::size_t pointCount, const RoundRules
     };
     if (rules.dropBeforeClasses)
       items.erase(std::remove_if(items.begin(), items.end(), skipped), items.end());
+    // The classes need the items' accesses; nothing reads them after.
     std::vector<PointAccess> access;
     access.reserve(items.size());
-    for (const Item& item : items) access.push_back(item.access);
+    for (Item& item : items) access.push_back(std::move(item.access));
     std::vector<std::uint8_t> changedThisRound(rules.waitForChanged ? pointCount : 0, 0);
     std::size_t roundChanged = 0;
     runInClasses(
